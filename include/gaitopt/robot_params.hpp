@@ -1,0 +1,58 @@
+#pragma once
+// Constant description of a RABBIT-class five-link biped, exactly as read from a robot YAML
+// file (before the support bar is folded into the trunk). SI units, radians.
+#include <array>
+#include <string>
+
+namespace gaitopt {
+
+// Lateral support bar (§1.4.2.4). Either an equivalent point mass at the hip, or the bar
+// geometry from which that mass follows by (1.29) with l_G = L_b/2.
+struct SupportBar {
+  bool present = false;
+  double equivalent_mass = 0.0;  // m_eq [kg], used by (1.24)
+  bool from_geometry = false;    // true when L_b, l_c, M_b, M_c were given
+  double bar_length = 0.0;       // L_b [m]
+  double overhang = 0.0;         // l_c [m]
+  double bar_mass = 0.0;         // M_b [kg]
+  double counterweight_mass = 0.0;  // M_c [kg]
+};
+
+// Piecewise-linear joint-side torque-speed envelope (3.47): |Γ*| ≤ Γmax(|ω|).
+// Breakpoints (speed [rad/s], torque [N·m]) in increasing speed; beyond the last, 0.
+struct TorqueEnvelope {
+  std::array<double, 4> speed{0.0, 5.45, 10.47, 12.15};
+  std::array<double, 4> torque{140.0, 140.0, 60.0, 0.0};
+};
+
+// Software joint limits (3.39), on δ2, δ2+δ3 (hips) and δ1, δ4 (knees) [rad].
+struct JointLimits {
+  double hip_min = -4.537856055185257;   // -260°
+  double hip_max = -1.9198621771937625;  // -110°
+  double knee_min = -4.014257279586958;  // -230°
+  double knee_max = -2.2165681500327987; // -127°
+};
+
+struct RobotParams {
+  std::string name;
+  std::string source_file;  // path it was read from (for messages)
+  // Lengths: tibias l1, l5 and femurs l2, l4 [m].
+  double l1 = 0.4, l2 = 0.4, l4 = 0.4, l5 = 0.4;
+  // CoM offsets [m]: s1, s5 from the knee; s2, s4, s3 from the hip (digest §1.3).
+  std::array<double, 5> s{};
+  std::array<double, 5> mass{};     // m1..m5 [kg], trunk without the bar
+  std::array<double, 5> inertia{};  // I_y1..I_y5 about each CoM [kg·m²]
+  std::array<double, 4> rotor_inertia{};  // I_m1..I_m4, motor side [kg·m²]
+  double gear_ratio = 50.0;               // N
+  std::array<double, 4> coulomb{};        // Γs1..Γs4, joint side [N·m]
+  std::array<double, 4> viscous{};        // fv1..fv4, joint side [N·m·s/rad]
+  double motor_torque_constant = 0.16;    // K_em, motor side [N·m/A]
+  double motor_resistance = 0.96;         // R [Ω]
+  TorqueEnvelope envelope;
+  JointLimits limits;
+  double gravity = 9.81;
+  SupportBar bar;
+  double trunk_length = 0.625;  // hip to top of trunk [m]; drawing only, not in the dynamics
+};
+
+}  // namespace gaitopt

@@ -1,0 +1,56 @@
+// `gaitopt model`: model terms at one state, as JSON on standard output.
+#include <iostream>
+
+#include "commands.hpp"
+#include "gaitopt/model_report.hpp"
+#include "gaitopt/robot_yaml.hpp"
+
+namespace gaitopt::cli {
+namespace {
+
+struct ModelArgs {
+  std::string robot = "configs/robot/rabbit_miossec.yaml";
+  std::vector<double> q, qd, qdd;
+  std::string rotor = "exact";
+};
+
+Vec5 toVec5(const std::vector<double>& v) {
+  return v.empty() ? Vec5::Zero() : Vec5(Eigen::Map<const Vec5>(v.data()));
+}
+
+}  // namespace
+
+void registerModelCommand(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<ModelArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "model", "Print the pinned (5-DOF) and floating (7-DOF) model terms at one state as JSON.");
+  cmd->add_option("--robot", args->robot, "Robot description YAML file")
+      ->capture_default_str()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--q", args->q, "Configuration alpha,delta1,delta2,delta3,delta4 [rad]")
+      ->required()
+      ->delimiter(',')
+      ->expected(5);
+  cmd->add_option("--qd", args->qd, "Velocities [rad/s], 5 comma-separated values (default 0)")
+      ->delimiter(',')
+      ->expected(5);
+  cmd->add_option("--qdd", args->qdd,
+                  "Accelerations [rad/s^2], 5 values; adds single-support inverse dynamics")
+      ->delimiter(',')
+      ->expected(5);
+  cmd->add_option("--rotor", args->rotor,
+                  "Rotor kinetic energy: 'exact' (1.17) or 'high_gear' (Appendix A, A.1)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"exact", "high_gear"}));
+  cmd->callback([args, &exit_code]() {
+    ModelOptions options;
+    options.rotor = args->rotor == "exact" ? RotorModel::Exact : RotorModel::HighGear;
+    const Model model = buildModel(loadRobot(args->robot), options);
+    std::optional<Vec5> qdd;
+    if (!args->qdd.empty()) qdd = toVec5(args->qdd);
+    std::cout << modelReportJson(model, toVec5(args->q), toVec5(args->qd), qdd);
+    exit_code = 0;
+  });
+}
+
+}  // namespace gaitopt::cli

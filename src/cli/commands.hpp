@@ -1,0 +1,13 @@
+#pragma once
+// Each `gaitopt` subcommand registers itself on the application; its callback stores the
+// process exit code. Exit codes: 0 success, 2 bad input, 3 step undefined / request infeasible.
+#include <CLI/CLI.hpp>
+
+namespace gaitopt::cli {
+
+constexpr int kExitBadInput = 2;
+constexpr int kExitUndefined = 3;
+
+void registerModelCommand(CLI::App& app, int& exit_code);
+
+}  // namespace gaitopt::cli

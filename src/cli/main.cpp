@@ -1,0 +1,30 @@
+// gaitopt command-line entry point: a thin layer over libgaitopt.
+#include <IpIpoptApplication.hpp>
+#include <iostream>
+#include <nlopt.hpp>
+
+#include "commands.hpp"
+#include "gaitopt/config_error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "gaitopt: optimal walking gaits for RABBIT-class planar bipeds (five links, point feet,\n"
+      "four actuated joints), after S. Miossec's 2004 thesis."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "gaitopt 0.1.0");
+  int exit_code = 0;
+  gaitopt::cli::registerModelCommand(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : gaitopt::cli::kExitBadInput;
+  } catch (const gaitopt::ConfigError& e) {
+    std::cerr << "gaitopt: error: " << e.what() << "\n";
+    return gaitopt::cli::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "gaitopt: error: " << e.what() << "\n";
+    return 1;
+  }
+  return exit_code;
+}

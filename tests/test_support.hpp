@@ -1,0 +1,37 @@
+#pragma once
+// Shared fixtures for the tests: the shipped robots and seeded random states.
+#include <random>
+#include <string>
+
+#include "gaitopt/model.hpp"
+#include "gaitopt/robot_yaml.hpp"
+
+namespace gaitopt::test {
+
+inline std::string sourcePath(const std::string& relative) {
+  return std::string(GAITOPT_SOURCE_DIR) + "/" + relative;
+}
+
+inline RobotParams robotFile(const std::string& name) {
+  return loadRobot(sourcePath("configs/robot/" + name + ".yaml"));
+}
+
+inline Model defaultModel(const ModelOptions& options = {}) {
+  return buildModel(robotFile("rabbit_miossec"), options);
+}
+
+// Walking-like random configurations: knees flexed, trunk near upright, moderate speeds.
+struct RandomStates {
+  std::mt19937 rng{12345};
+  Vec5 q() {
+    std::uniform_real_distribution<double> u(-0.4, 0.4);
+    return Vec5(u(rng), -M_PI + 0.3 + u(rng) * 0.5, -M_PI + u(rng), u(rng) * 1.5,
+                -M_PI + 0.3 + u(rng) * 0.5);
+  }
+  Vec5 qd() {
+    std::uniform_real_distribution<double> u(-2.0, 2.0);
+    return Vec5(u(rng), u(rng), u(rng), u(rng), u(rng));
+  }
+};
+
+}  // namespace gaitopt::test
