@@ -1,0 +1,27 @@
+#pragma once
+// Error in a user-supplied configuration file (robot, gait or optimiser YAML). It names the
+// file, the offending key as a dotted path and its line, so the user can fix the file without
+// reading the code; the CLI turns it into exit code 2.
+#include <stdexcept>
+#include <string>
+
+namespace gaitopt {
+
+class ConfigError : public std::runtime_error {
+ public:
+  // Message: "<file>:<line>: key '<key>': <problem>". The ":<line>" part is left out when
+  // line is 0 (unknown), and the "key '<key>': " part when key is empty (file-level errors
+  // such as an unreadable or unparsable file).
+  ConfigError(std::string file, std::string key, int line, const std::string& problem);
+
+  const std::string& file() const { return file_; }
+  const std::string& key() const { return key_; }  // dotted path, e.g. "masses.m3"
+  int line() const { return line_; }               // 1-based, 0 if unknown
+
+ private:
+  std::string file_;
+  std::string key_;
+  int line_;
+};
+
+}  // namespace gaitopt
