@@ -42,11 +42,11 @@ template <class S> struct DoubleSupportAffine {
   Vector2<S> com_acceleration;
 };
 
+// Overload for callers that already hold the model terms at (q, q̇).
 template <class S>
-DoubleSupportAffine<S> doubleSupportAffine(const Model& model, const Vector5<S>& q,
-                                           const Vector5<S>& qd, const Vector5<S>& qdd,
-                                           SignMode mode) {
-  const PinnedTerms<S> t = pinnedTerms(model, q, qd);
+DoubleSupportAffine<S> doubleSupportAffine(const Model& model, const PinnedTerms<S>& t,
+                                           const Vector5<S>& q, const Vector5<S>& qd,
+                                           const Vector5<S>& qdd, SignMode mode) {
   const Vector5<S> tau = t.A * qdd + t.C + t.G;
   DoubleSupportAffine<S> r;
   // α-row: τ1 = D2(0,0) R2x + D2(1,0) R2z, with D2(·,0) = (−z2, x2).
@@ -59,6 +59,13 @@ DoubleSupportAffine<S> doubleSupportAffine(const Model& model, const Vector5<S>&
   r.K = solveDGamma25(Vector4<S>(d2x + d2z * r.R2z_slope));
   r.com_acceleration = pinnedComAcceleration(model, q, qd, qdd);
   return r;
+}
+
+template <class S>
+DoubleSupportAffine<S> doubleSupportAffine(const Model& model, const Vector5<S>& q,
+                                           const Vector5<S>& qd, const Vector5<S>& qdd,
+                                           SignMode mode) {
+  return doubleSupportAffine(model, pinnedTerms(model, q, qd), q, qd, qdd, mode);
 }
 
 template <class S> struct DoubleSupportInverseDynamics {

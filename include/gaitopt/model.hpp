@@ -57,4 +57,11 @@ struct Model {
 
 Model buildModel(const RobotParams& robot, const ModelOptions& options = {});
 
+// Joule-loss coefficient R/(N K_em)² [W/(N·m)²] on joint-side torques: the printed R/K_em²
+// of (3.32) mixes a motor-side constant with joint-side torques (digest gap #5).
+inline double jouleCoefficient(const Model& m) {
+  const double nk = m.robot.gear_ratio * m.robot.motor_torque_constant;
+  return m.robot.motor_resistance / (nk * nk);
+}
+
 }  // namespace gaitopt

@@ -1,0 +1,291 @@
+// bench_model: wall-clock cost of one evaluation of the dynamic model and of its exact first
+// derivatives, on the default robot (configs/robot/rabbit_miossec.yaml).
+//
+//   bench_model [--json FILE] [--batch N] [--repeats N] [--help]
+//
+// Each measurement times `batch` consecutive calls (default 10000) cycling through 1000
+// pre-generated, seeded, walking-like random states, and repeats that `repeats` times (default
+// 51, at least 31 recommended) after one untimed warm-up batch. Reported per call, in ns: the
+// median, the minimum and the 90th percentile over the repeated batches.
+//
+// Dead-code elimination is prevented twice: every result object escapes through an empty asm
+// statement with a memory clobber (so all of its fields must be computed), and one entry of it
+// per call is accumulated into a volatile sink.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <exception>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "gaitopt/atomic_file.hpp"
+#include "gaitopt/config_error.hpp"
+#include "gaitopt/dynamics_pinned.hpp"
+#include "gaitopt/inverse_dynamics.hpp"
+#include "gaitopt/json_writer.hpp"
+#include "gaitopt/model_derivatives.hpp"
+#include "gaitopt/robot_yaml.hpp"
+
+namespace {
+
+using namespace gaitopt;
+using Clock = std::chrono::steady_clock;
+
+constexpr const char* kRobotFile = GAITOPT_SOURCE_DIR "/configs/robot/rabbit_miossec.yaml";
+constexpr std::size_t kStateCount = 1000;
+constexpr unsigned kSeed = 20040611;
+constexpr SignMode kSignMode = SignMode::Smooth;  // the variant used in optimisation
+
+volatile double g_sink = 0.0;
+
+#if defined(__GNUC__) && !defined(__clang__)
+constexpr const char* kCompiler = "gcc " __VERSION__;
+#else
+constexpr const char* kCompiler = __VERSION__;
+#endif
+#ifdef NDEBUG
+constexpr const char* kBuildFlags = "NDEBUG";
+#else
+constexpr const char* kBuildFlags = "assertions on: not a Release build";
+#endif
+
+// Forces `value` to be fully materialised in memory: the compiler must assume the asm reads it.
+template <class T> inline void escape(const T& value) {
+  asm volatile("" : : "g"(&value) : "memory");
+}
+
+struct State {
+  Vec5 q, qd, qdd;
+};
+
+// Walking-like states: knees flexed, trunk near upright, moderate speeds and accelerations.
+std::vector<State> makeStates(std::size_t n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<State> states(n);
+  for (State& s : states) {
+    s.q << 0.4 * u(rng), -M_PI + 0.3 + 0.2 * u(rng), -M_PI + 0.4 * u(rng), 0.6 * u(rng),
+        -M_PI + 0.3 + 0.2 * u(rng);
+    for (int i = 0; i < 5; ++i) s.qd(i) = 2.0 * u(rng);
+    for (int i = 0; i < 5; ++i) s.qdd(i) = 10.0 * u(rng);
+  }
+  return states;
+}
+
+struct Stats {
+  std::string name;
+  std::string description;
+  double median_ns = 0.0, min_ns = 0.0, p90_ns = 0.0, mean_ns = 0.0;
+};
+
+// Per-call times of `repeats` batches of `batch` calls of `call`, after one warm-up batch.
+Stats measure(const std::string& name, const std::string& description,
+              const std::vector<State>& states, int batch, int repeats,
+              double (*call)(const Model&, const State&), const Model& model) {
+  std::vector<double> per_call;
+  per_call.reserve(static_cast<std::size_t>(repeats));
+  std::size_t k = 0;
+  for (int r = 0; r <= repeats; ++r) {
+    double acc = 0.0;
+    const Clock::time_point t0 = Clock::now();
+    for (int i = 0; i < batch; ++i) {
+      acc += call(model, states[k]);
+      if (++k == states.size()) k = 0;
+    }
+    const Clock::time_point t1 = Clock::now();
+    g_sink = g_sink + acc;
+    if (r == 0) continue;  // warm-up
+    per_call.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count() / batch);
+  }
+  std::sort(per_call.begin(), per_call.end());
+  const std::size_t n = per_call.size();
+  Stats s;
+  s.name = name;
+  s.description = description;
+  s.min_ns = per_call.front();
+  s.median_ns = n % 2 == 1 ? per_call[n / 2] : 0.5 * (per_call[n / 2 - 1] + per_call[n / 2]);
+  // Nearest-rank 90th percentile.
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(0.9 * static_cast<double>(n)));
+  s.p90_ns = per_call[std::max<std::size_t>(rank, 1) - 1];
+  double sum = 0.0;
+  for (double t : per_call) sum += t;
+  s.mean_ns = sum / static_cast<double>(n);
+  return s;
+}
+
+// The four measured calls. Each returns one entry of its result for the sink.
+double callPinnedTerms(const Model& m, const State& s) {
+  const PinnedTerms<double> t = pinnedTerms(m, s.q, s.qd);
+  escape(t);
+  return t.A(0, 1) + t.C(2) + t.G(0) + t.D2(1, 3) + t.H2(0);
+}
+
+double callPinnedTermsDerivatives(const Model& m, const State& s) {
+  const PinnedDerivatives d = pinnedTermsDerivatives(m, s.q, s.qd);
+  escape(d);
+  return d.value.A(0, 1) + d.dA_dq[2](0, 1) + d.dC_dqd(1, 3) + d.dH2_dq(1, 2);
+}
+
+double callInverseDynamics(const Model& m, const State& s) {
+  const SingleSupportInverseDynamics<double> r = inverseDynamicsSS(m, s.q, s.qd, s.qdd, kSignMode);
+  escape(r);
+  return r.gamma_star(1) + r.alpha_row_residual + r.R1(1);
+}
+
+double callInverseDynamicsDerivatives(const Model& m, const State& s) {
+  const InverseDynamicsSSDerivatives d =
+      inverseDynamicsSSDerivatives(m, s.q, s.qd, s.qdd, kSignMode);
+  escape(d);
+  return d.value.gamma_star(1) + d.dgamma_star(2, 7) + d.dR1(1, 11);
+}
+
+std::string cpuModel() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  for (const char* field : {"model name", "Hardware", "cpu model", "Processor"}) {
+    in.clear();
+    in.seekg(0);
+    while (std::getline(in, line)) {
+      if (line.rfind(field, 0) != 0) continue;
+      const std::size_t colon = line.find(':');
+      if (colon == std::string::npos) continue;
+      const std::size_t start = line.find_first_not_of(" \t", colon + 1);
+      if (start != std::string::npos) return line.substr(start);
+    }
+  }
+  return "unknown";
+}
+
+std::string utcNow() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+void usage(std::ostream& out) {
+  out << "usage: bench_model [--json FILE] [--batch N] [--repeats N]\n"
+         "  --json FILE   also write the results as JSON to FILE\n"
+         "  --batch N     calls per timed batch (default 10000)\n"
+         "  --repeats N   timed batches per measurement (default 51; >= 31 recommended)\n";
+}
+
+bool parsePositive(const char* text, int& out) {
+  char* end = nullptr;
+  const long v = std::strtol(text, &end, 10);
+  if (end == text || *end != '\0' || v < 1 || v > 100000000) return false;
+  out = static_cast<int>(v);
+  return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string json_path;
+  int batch = 10000;
+  int repeats = 51;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (arg == "--help" || arg == "-h") {
+      usage(std::cout);
+      return 0;
+    } else if (arg == "--json" && has_value) {
+      json_path = argv[++i];
+    } else if (arg == "--batch" && has_value && parsePositive(argv[i + 1], batch)) {
+      ++i;
+    } else if (arg == "--repeats" && has_value && parsePositive(argv[i + 1], repeats)) {
+      ++i;
+    } else {
+      std::cerr << "bench_model: bad argument '" << arg << "'\n";
+      usage(std::cerr);
+      return 2;
+    }
+  }
+
+  Model model;
+  try {
+    model = buildModel(loadRobot(kRobotFile));
+  } catch (const std::exception& e) {
+    std::cerr << "bench_model: error: " << e.what() << "\n";
+    return 2;
+  }
+  const std::vector<State> states = makeStates(kStateCount, kSeed);
+  const std::string date = utcNow();
+  const std::string cpu = cpuModel();
+
+  std::printf("bench_model  %s\n", date.c_str());
+  std::printf("cpu:       %s\n", cpu.c_str());
+  std::printf("compiler:  %s (%s)\n", kCompiler, kBuildFlags);
+  std::printf("robot:     %s\n", kRobotFile);
+  std::printf("states:    %zu seeded random states (seed %u), cycled\n", states.size(), kSeed);
+  std::printf("timing:    %d batches of %d calls (+1 warm-up batch), steady_clock\n", repeats,
+              batch);
+  std::printf("friction:  smooth sign tanh(w/eps), eps = %g rad/s\n\n",
+              model.options.friction_smoothing);
+
+  std::vector<Stats> results;
+  results.push_back(measure("pinnedTerms", "A, C, G, D2, H2 (pinned model), double", states,
+                            batch, repeats, callPinnedTerms, model));
+  results.push_back(measure("pinnedTermsDerivatives",
+                            "values + d/dq, d/dqd (forward AD, 10 directions)", states, batch,
+                            repeats, callPinnedTermsDerivatives, model));
+  results.push_back(measure("inverseDynamicsSS", "Gamma*, Gamma, alpha residual, R1, double",
+                            states, batch, repeats, callInverseDynamics, model));
+  results.push_back(measure("inverseDynamicsSSDerivatives",
+                            "values + d/d(q, qd, qdd) (forward AD, 15 directions)", states, batch,
+                            repeats, callInverseDynamicsDerivatives, model));
+
+  std::printf("%-30s %12s %12s %12s\n", "measurement (ns per call)", "median", "min", "p90");
+  std::printf("%-30s %12s %12s %12s\n", "------------------------------", "------------",
+              "------------", "------------");
+  for (const Stats& s : results) {
+    std::printf("%-30s %12.1f %12.1f %12.1f\n", s.name.c_str(), s.median_ns, s.min_ns, s.p90_ns);
+  }
+  std::printf("\n(sink %g)\n", static_cast<double>(g_sink));
+
+  if (!json_path.empty()) {
+    JsonWriter w;
+    w.beginObject();
+    w.key("benchmark").value("bench_model");
+    w.key("date").value(date);
+    w.key("cpu").value(cpu);
+    w.key("compiler").value(std::string(kCompiler));
+    w.key("robot").value(std::string(kRobotFile));
+    w.key("states").value(static_cast<int>(states.size()));
+    w.key("seed").value(static_cast<int>(kSeed));
+    w.key("batch").value(batch);
+    w.key("repeats").value(repeats);
+    w.key("friction_sign").value("smooth");
+    w.key("unit").value("ns per call");
+    w.key("results").beginArray();
+    for (const Stats& s : results) {
+      w.beginObject();
+      w.key("name").value(s.name);
+      w.key("description").value(s.description);
+      w.key("median_ns").value(s.median_ns);
+      w.key("min_ns").value(s.min_ns);
+      w.key("p90_ns").value(s.p90_ns);
+      w.key("mean_ns").value(s.mean_ns);
+      w.endObject();
+    }
+    w.endArray();
+    w.endObject();
+    try {
+      writeFileAtomically(json_path, w.str() + "\n");
+    } catch (const std::exception& e) {
+      std::cerr << "bench_model: error: cannot write " << json_path << ": " << e.what() << "\n";
+      return 1;
+    }
+    std::printf("JSON written to %s\n", json_path.c_str());
+  }
+  return 0;
+}

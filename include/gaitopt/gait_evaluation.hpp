@@ -1,0 +1,42 @@
+#pragma once
+// Result of evaluating one walking step: the constraint vector with its per-entry state, the
+// criteria, and the motion (polynomials and zero-dynamics solution) from which the trajectory is
+// sampled. Templated so the same evaluation runs on double and on an AD scalar.
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "gaitopt/gait_constraints.hpp"
+#include "gaitopt/gait_polynomials.hpp"
+#include "gaitopt/types.hpp"
+
+namespace gaitopt {
+
+template <class S> struct GaitMotion {
+  S d = S(0.0), T_DS = S(0.0), T_SS = S(0.0);
+  Vector5<S> q_iDS, q_fDS, q_int, q_iSS, q_fSS;
+  S alpha_iSS = S(0.0), alpha_int = S(0.0), alpha_fSS = S(0.0);
+  std::array<LocalQuartic<S>, 4> ss_path;  // δ1..δ4 as functions of α (3.2)
+  LocalQuartic<S> ds_delta1, ds_delta2;    // δ1, δ2 as functions of α (3.3)
+  LocalQuartic<S> ds_alpha;                // α as a function of t (3.4)
+  S alphadot_iSS = S(0.0);                 // after the saturation (3.56)
+  S f_iSS = S(0.0);                        // max(f(α_iSS), f_min)
+  S alphadot_fSS = S(0.0), kappa = S(0.0);
+  Eigen::Matrix<S, Eigen::Dynamic, 1> ss_phi, ss_time;  // Φ and t at the SS nodes
+};
+
+template <class S> struct GaitEvaluation {
+  std::vector<S> g;
+  std::vector<ConstraintState> state;
+  int failed_level = -1;         // lowest level with a violated constraint; −1: none
+  bool motion_computed = false;  // criteria and level-5 values exist (possibly extended)
+  S C_Gamma = S(0.0), C_E = S(0.0), W = S(0.0), C_frott = S(0.0);
+  S T_SS = S(0.0), T_DS = S(0.0), step_length = S(0.0), speed = S(0.0), alphadot_fSS = S(0.0);
+  GaitMotion<S> motion;
+  std::vector<double> ds_switch_times;  // DS force-distribution branch changes [s from DS start]
+
+  // Defined in the thesis' sense: every level below the criterion's (0–4) holds.
+  bool defined() const { return failed_level < 0 || failed_level >= 5; }
+};
+
+}  // namespace gaitopt

@@ -1,0 +1,42 @@
+#pragma once
+// Evaluator of Miossec's parameterised walking step: a constant description (model, options,
+// grids, constraint layout) and the per-call evaluation of values, or values with the exact
+// gradient with respect to the 17 parameters.
+#include <Eigen/Core>
+
+#include "gaitopt/chebyshev.hpp"
+#include "gaitopt/gait_evaluation.hpp"
+#include "gaitopt/gait_options.hpp"
+#include "gaitopt/gait_parameters.hpp"
+#include "gaitopt/model.hpp"
+
+namespace gaitopt {
+
+// Values of one evaluation with first derivatives with respect to the parameters.
+struct GaitGradient {
+  GaitEvaluation<double> value;
+  Eigen::Matrix<double, Eigen::Dynamic, kNumGaitParameters> dg;  // rows: constraints
+  GaitParameters dC_Gamma, dC_E, dW, dC_frott, dT_SS, dT_DS, dspeed;
+};
+
+class GaitEvaluator {
+ public:
+  GaitEvaluator(const RobotParams& robot, const GaitOptions& options,
+                const ModelOptions& model_options = {});
+  GaitEvaluation<double> evaluate(const GaitParameters& p) const;
+  GaitGradient evaluateWithGradient(const GaitParameters& p) const;
+
+  const Model& model() const { return model_; }
+  const GaitOptions& options() const { return options_; }
+  const ConstraintLayout& layout() const { return layout_; }
+  const ChebyshevGrid& ssGrid() const { return ss_grid_; }
+  const ChebyshevGrid& dsGrid() const { return ds_grid_; }
+
+ private:
+  Model model_;
+  GaitOptions options_;
+  ConstraintLayout layout_;
+  ChebyshevGrid ss_grid_, ds_grid_;
+};
+
+}  // namespace gaitopt

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Shared first half of scripts/run.sh and scripts/test.sh: install the Debian packages gaitopt
+# needs (only those missing) and build the project in Release mode into build/.
+# Run as `bash scripts/setup.sh` by run.sh and test.sh; works from any current directory.
+set -euo pipefail
+
+GAITOPT_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+
+GAITOPT_PACKAGES=(
+  build-essential cmake pkg-config
+  libeigen3-dev coinor-libipopt-dev libnlopt-cxx-dev libyaml-cpp-dev libcli11-dev catch2
+)
+
+gaitopt_install_packages() {
+  local missing=() pkg status
+  for pkg in "${GAITOPT_PACKAGES[@]}"; do
+    # Captured rather than piped into `grep -q`, which under pipefail could fail by SIGPIPE.
+    status="$(dpkg -s "$pkg" 2>/dev/null || true)"
+    case "$status" in
+      *"Status: install ok installed"*) ;;
+      *) missing+=("$pkg") ;;
+    esac
+  done
+  if [ "${#missing[@]}" -eq 0 ]; then
+    echo "setup: all required packages are installed"
+    return 0
+  fi
+  echo "setup: installing missing packages: ${missing[*]}"
+  if ! command -v apt-get >/dev/null 2>&1; then
+    echo "setup: error: apt-get not found (Debian/Ubuntu expected); install: ${missing[*]}" >&2
+    return 1
+  fi
+  local as_root=()
+  if [ "$(id -u)" -ne 0 ]; then
+    if command -v sudo >/dev/null 2>&1; then
+      as_root=(sudo)
+    else
+      echo "setup: error: not root and sudo is not available; install as root: ${missing[*]}" >&2
+      return 1
+    fi
+  fi
+  ${as_root[@]+"${as_root[@]}"} env DEBIAN_FRONTEND=noninteractive apt-get update
+  ${as_root[@]+"${as_root[@]}"} env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
+    "${missing[@]}"
+}
+
+gaitopt_build() {
+  cmake -S "$GAITOPT_ROOT" -B "$GAITOPT_ROOT/build" -DCMAKE_BUILD_TYPE=Release
+  cmake --build "$GAITOPT_ROOT/build" -j"$(nproc)"
+}
+
+gaitopt_install_packages
+gaitopt_build
