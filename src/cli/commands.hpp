@@ -9,5 +9,6 @@ constexpr int kExitBadInput = 2;
 constexpr int kExitUndefined = 3;
 
 void registerModelCommand(CLI::App& app, int& exit_code);
+void registerEvaluateCommand(CLI::App& app, int& exit_code);
 
 }  // namespace gaitopt::cli

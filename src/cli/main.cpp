@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "gaitopt 0.1.0");
   int exit_code = 0;
   gaitopt::cli::registerModelCommand(app, exit_code);
+  gaitopt::cli::registerEvaluateCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

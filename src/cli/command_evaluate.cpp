@@ -1,0 +1,101 @@
+// `gaitopt evaluate`: one walking step from a gait file → summary.json (+ trajectory.csv).
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "commands.hpp"
+#include "gaitopt/atomic_file.hpp"
+#include "gaitopt/gait_evaluator.hpp"
+#include "gaitopt/gait_summary.hpp"
+#include "gaitopt/gait_trajectory.hpp"
+#include "gaitopt/gait_yaml.hpp"
+
+namespace gaitopt::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct EvaluateArgs {
+  std::string gait;
+  std::string out;
+  std::optional<double> sample_rate;
+};
+
+std::string shortNumber(double v, const char* format = "%.6g") {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+}  // namespace
+
+void registerEvaluateCommand(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<EvaluateArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "evaluate",
+      "Evaluate one walking step of a gait file: writes OUT/summary.json and, for a defined "
+      "step, OUT/trajectory.csv. Exit 0: step defined (level-5 constraints may be violated); "
+      "3: step undefined (summary.json still written); 2: bad input (nothing written).");
+  cmd->add_option("--gait", args->gait, "Gait YAML file (robot, 17 parameters, options)")
+      ->required();
+  cmd->add_option("--out", args->out, "Output directory (created if missing)")->required();
+  cmd->add_option("--sample-rate", args->sample_rate,
+                  "trajectory.csv sample rate [Hz], overrides options.sample_rate (0 < HZ <= 1e5)")
+      ->check(CLI::Validator(
+          [](std::string& s) -> std::string {
+            double v = 0.0;
+            try {
+              std::size_t used = 0;
+              v = std::stod(s, &used);
+              if (used != s.size()) return "not a number: " + s;
+            } catch (const std::exception&) {
+              return "not a number: " + s;
+            }
+            return v > 0.0 && v <= 1e5 ? "" : "must be > 0 and <= 1e5 Hz, got " + s;
+          },
+          "HZ"));
+  cmd->callback([args, &exit_code]() {
+    // Everything that can fail on bad input happens before the output directory is touched.
+    GaitFile gait = loadGaitFile(args->gait);
+    if (args->sample_rate) gait.options.sample_rate = *args->sample_rate;
+    std::error_code ec;
+    if (fs::exists(args->out, ec) && !fs::is_directory(args->out, ec)) {
+      throw CLI::ValidationError("--out", "'" + args->out + "' exists and is not a directory");
+    }
+
+    const GaitEvaluator evaluator(gait.robot, gait.options, gait.model_options);
+    const GaitEvaluation<double> e = evaluator.evaluate(gait.parameters);
+    const bool defined = e.defined();
+    const std::string summary = gaitSummaryJson(evaluator, gait.parameters, e);
+    std::optional<std::string> csv;
+    if (defined && e.motion_computed) {
+      csv = trajectoryCsv(sampleTrajectory(evaluator, e, gait.options.sample_rate));
+    }
+
+    const fs::path dir(args->out);
+    fs::create_directories(dir);
+    writeFileAtomically((dir / "summary.json").string(), summary);
+    const fs::path csv_path = dir / "trajectory.csv";
+    if (csv) {
+      writeFileAtomically(csv_path.string(), *csv);
+    } else {
+      fs::remove(csv_path, ec);  // a trajectory from an earlier run would not match this step
+    }
+
+    const bool criteria = defined && e.motion_computed;
+    std::cout << "evaluate: " << (defined ? "ok" : "undefined") << ", failed level "
+              << (e.failed_level < 0 ? std::string("none") : std::to_string(e.failed_level))
+              << ", C_Gamma " << (criteria ? shortNumber(e.C_Gamma) + " N^2 m s" : "n/a")
+              << ", speed "
+              << (zeroDynamicsComputed(evaluator, e) ? shortNumber(e.speed, "%.4g") + " m/s"
+                                                     : std::string("n/a"))
+              << ", max violation " << shortNumber(maxDefinedViolation(e), "%.4g") << " -> "
+              << args->out << "\n";
+    exit_code = defined ? 0 : kExitUndefined;
+  });
+}
+
+}  // namespace gaitopt::cli
