@@ -11,19 +11,15 @@
 // Dead-code elimination is prevented twice: every result object escapes through an empty asm
 // statement with a memory clobber (so all of its fields must be computed), and one entry of it
 // per call is accumulated into a volatile sink.
-#include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <ctime>
 #include <exception>
-#include <fstream>
 #include <iostream>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "bench_timing.hpp"
 #include "gaitopt/atomic_file.hpp"
 #include "gaitopt/config_error.hpp"
 #include "gaitopt/dynamics_pinned.hpp"
@@ -35,30 +31,12 @@
 namespace {
 
 using namespace gaitopt;
-using Clock = std::chrono::steady_clock;
+using namespace gaitopt::bench;
 
 constexpr const char* kRobotFile = GAITOPT_SOURCE_DIR "/configs/robot/rabbit_miossec.yaml";
 constexpr std::size_t kStateCount = 1000;
 constexpr unsigned kSeed = 20040611;
 constexpr SignMode kSignMode = SignMode::Smooth;  // the variant used in optimisation
-
-volatile double g_sink = 0.0;
-
-#if defined(__GNUC__) && !defined(__clang__)
-constexpr const char* kCompiler = "gcc " __VERSION__;
-#else
-constexpr const char* kCompiler = __VERSION__;
-#endif
-#ifdef NDEBUG
-constexpr const char* kBuildFlags = "NDEBUG";
-#else
-constexpr const char* kBuildFlags = "assertions on: not a Release build";
-#endif
-
-// Forces `value` to be fully materialised in memory: the compiler must assume the asm reads it.
-template <class T> inline void escape(const T& value) {
-  asm volatile("" : : "g"(&value) : "memory");
-}
 
 struct State {
   Vec5 q, qd, qdd;
@@ -78,45 +56,16 @@ std::vector<State> makeStates(std::size_t n, unsigned seed) {
   return states;
 }
 
-struct Stats {
-  std::string name;
-  std::string description;
-  double median_ns = 0.0, min_ns = 0.0, p90_ns = 0.0, mean_ns = 0.0;
-};
-
-// Per-call times of `repeats` batches of `batch` calls of `call`, after one warm-up batch.
-Stats measure(const std::string& name, const std::string& description,
-              const std::vector<State>& states, int batch, int repeats,
-              double (*call)(const Model&, const State&), const Model& model) {
-  std::vector<double> per_call;
-  per_call.reserve(static_cast<std::size_t>(repeats));
+// Per-call times of `call` cycling through the pre-generated states (see bench_timing.hpp).
+Stats measureOnStates(const std::string& name, const std::string& description,
+                      const std::vector<State>& states, int batch, int repeats,
+                      double (*call)(const Model&, const State&), const Model& model) {
   std::size_t k = 0;
-  for (int r = 0; r <= repeats; ++r) {
-    double acc = 0.0;
-    const Clock::time_point t0 = Clock::now();
-    for (int i = 0; i < batch; ++i) {
-      acc += call(model, states[k]);
-      if (++k == states.size()) k = 0;
-    }
-    const Clock::time_point t1 = Clock::now();
-    g_sink = g_sink + acc;
-    if (r == 0) continue;  // warm-up
-    per_call.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count() / batch);
-  }
-  std::sort(per_call.begin(), per_call.end());
-  const std::size_t n = per_call.size();
-  Stats s;
-  s.name = name;
-  s.description = description;
-  s.min_ns = per_call.front();
-  s.median_ns = n % 2 == 1 ? per_call[n / 2] : 0.5 * (per_call[n / 2 - 1] + per_call[n / 2]);
-  // Nearest-rank 90th percentile.
-  const std::size_t rank = static_cast<std::size_t>(std::ceil(0.9 * static_cast<double>(n)));
-  s.p90_ns = per_call[std::max<std::size_t>(rank, 1) - 1];
-  double sum = 0.0;
-  for (double t : per_call) sum += t;
-  s.mean_ns = sum / static_cast<double>(n);
-  return s;
+  return measure(name, description, batch, repeats, [&]() {
+    const double r = call(model, states[k]);
+    if (++k == states.size()) k = 0;
+    return r;
+  });
 }
 
 // The four measured calls. Each returns one entry of its result for the sink.
@@ -145,45 +94,11 @@ double callInverseDynamicsDerivatives(const Model& m, const State& s) {
   return d.value.gamma_star(1) + d.dgamma_star(2, 7) + d.dR1(1, 11);
 }
 
-std::string cpuModel() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  for (const char* field : {"model name", "Hardware", "cpu model", "Processor"}) {
-    in.clear();
-    in.seekg(0);
-    while (std::getline(in, line)) {
-      if (line.rfind(field, 0) != 0) continue;
-      const std::size_t colon = line.find(':');
-      if (colon == std::string::npos) continue;
-      const std::size_t start = line.find_first_not_of(" \t", colon + 1);
-      if (start != std::string::npos) return line.substr(start);
-    }
-  }
-  return "unknown";
-}
-
-std::string utcNow() {
-  const std::time_t now = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&now, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
 void usage(std::ostream& out) {
   out << "usage: bench_model [--json FILE] [--batch N] [--repeats N]\n"
          "  --json FILE   also write the results as JSON to FILE\n"
          "  --batch N     calls per timed batch (default 10000)\n"
          "  --repeats N   timed batches per measurement (default 51; >= 31 recommended)\n";
-}
-
-bool parsePositive(const char* text, int& out) {
-  char* end = nullptr;
-  const long v = std::strtol(text, &end, 10);
-  if (end == text || *end != '\0' || v < 1 || v > 100000000) return false;
-  out = static_cast<int>(v);
-  return true;
 }
 
 }  // namespace
@@ -233,16 +148,17 @@ int main(int argc, char** argv) {
               model.options.friction_smoothing);
 
   std::vector<Stats> results;
-  results.push_back(measure("pinnedTerms", "A, C, G, D2, H2 (pinned model), double", states,
-                            batch, repeats, callPinnedTerms, model));
-  results.push_back(measure("pinnedTermsDerivatives",
-                            "values + d/dq, d/dqd (forward AD, 10 directions)", states, batch,
-                            repeats, callPinnedTermsDerivatives, model));
-  results.push_back(measure("inverseDynamicsSS", "Gamma*, Gamma, alpha residual, R1, double",
-                            states, batch, repeats, callInverseDynamics, model));
-  results.push_back(measure("inverseDynamicsSSDerivatives",
-                            "values + d/d(q, qd, qdd) (forward AD, 15 directions)", states, batch,
-                            repeats, callInverseDynamicsDerivatives, model));
+  results.push_back(measureOnStates("pinnedTerms", "A, C, G, D2, H2 (pinned model), double",
+                                    states, batch, repeats, callPinnedTerms, model));
+  results.push_back(measureOnStates("pinnedTermsDerivatives",
+                                    "values + d/dq, d/dqd (forward AD, 10 directions)", states,
+                                    batch, repeats, callPinnedTermsDerivatives, model));
+  results.push_back(measureOnStates("inverseDynamicsSS",
+                                    "Gamma*, Gamma, alpha residual, R1, double", states, batch,
+                                    repeats, callInverseDynamics, model));
+  results.push_back(measureOnStates("inverseDynamicsSSDerivatives",
+                                    "values + d/d(q, qd, qdd) (forward AD, 15 directions)", states,
+                                    batch, repeats, callInverseDynamicsDerivatives, model));
 
   std::printf("%-30s %12s %12s %12s\n", "measurement (ns per call)", "median", "min", "p90");
   std::printf("%-30s %12s %12s %12s\n", "------------------------------", "------------",

@@ -24,24 +24,22 @@ GaitEvaluator::GaitEvaluator(const RobotParams& robot, const GaitOptions& option
     : model_(gaitModel(robot, options, model_options)),
       options_(options),
       layout_(options),
-      ss_grid_(options.ss_nodes),
-      ds_grid_(options.ds_nodes) {}
+      grids_(options) {}
 
 GaitEvaluation<double> GaitEvaluator::evaluate(const GaitParameters& p) const {
   GaitEvaluation<double> out;
-  detail::evaluateGaitImpl(model_, options_, layout_, ss_grid_, ds_grid_, p, out);
+  detail::evaluateGaitImpl(model_, options_, layout_, grids_, p, out);
   return out;
 }
 
 GaitGradient GaitEvaluator::evaluateWithGradient(const GaitParameters& p) const {
   GaitGradient r;
-  // The double pass gives the values and the DS branch switches the AD pass integrates over.
+  // The double pass gives the values and the DS pieces the AD pass integrates over.
   r.value = evaluate(p);
   GaitVector<GaitAD> pad;
   for (int i = 0; i < kNumGaitParameters; ++i) pad(i) = GaitAD(p(i), kNumGaitParameters, i);
   GaitEvaluation<GaitAD> ad;
-  detail::evaluateGaitImpl(model_, options_, layout_, ss_grid_, ds_grid_, pad, ad,
-                           &r.value.ds_switch_times);
+  detail::evaluateGaitImpl(model_, options_, layout_, grids_, pad, ad, &r.value.ds_pieces);
   r.dg.resize(layout_.size(), kNumGaitParameters);
   for (int k = 0; k < layout_.size(); ++k) {
     const auto& der = ad.g[k].derivatives();

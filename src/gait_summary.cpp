@@ -142,7 +142,7 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
 
   w.key("ds_switch_times").beginArray();
   if (criteria) {
-    for (double t : e.ds_switch_times) w.value(t);
+    for (double t : e.ds_pieces.switch_times) w.value(t);
   }
   w.endArray();
 

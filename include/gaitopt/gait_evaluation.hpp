@@ -25,6 +25,15 @@ template <class S> struct GaitMotion {
   Eigen::Matrix<S, Eigen::Dynamic, 1> ss_phi, ss_time;  // Φ and t at the SS nodes
 };
 
+// Double-support quadrature pieces, split where the force-distribution branch changes; each
+// piece is integrated with its own branch (ds_force_distribution.hpp).
+struct DsPieces {
+  std::vector<double> switch_times;  // from DS start [s]
+  std::vector<int> switch_function;  // which switching function vanishes there
+  std::vector<double> switch_rate;   // its time derivative there [1/s × its unit]
+  std::vector<int> branches;         // one per piece: switch_times.size() + 1
+};
+
 template <class S> struct GaitEvaluation {
   std::vector<S> g;
   std::vector<ConstraintState> state;
@@ -33,7 +42,7 @@ template <class S> struct GaitEvaluation {
   S C_Gamma = S(0.0), C_E = S(0.0), W = S(0.0), C_frott = S(0.0);
   S T_SS = S(0.0), T_DS = S(0.0), step_length = S(0.0), speed = S(0.0), alphadot_fSS = S(0.0);
   GaitMotion<S> motion;
-  std::vector<double> ds_switch_times;  // DS force-distribution branch changes [s from DS start]
+  DsPieces ds_pieces;
 
   // Defined in the thesis' sense: every level below the criterion's (0–4) holds.
   bool defined() const { return failed_level < 0 || failed_level >= 5; }

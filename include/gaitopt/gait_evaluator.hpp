@@ -3,6 +3,7 @@
 // grids, constraint layout) and the per-call evaluation of values, or values with the exact
 // gradient with respect to the 17 parameters.
 #include <Eigen/Core>
+#include <algorithm>
 
 #include "gaitopt/chebyshev.hpp"
 #include "gaitopt/gait_evaluation.hpp"
@@ -11,6 +12,14 @@
 #include "gaitopt/model.hpp"
 
 namespace gaitopt {
+
+// Chebyshev grids of the phases: SS in α and DS in t for constraints and quadrature, and the
+// grid of each DS quadrature piece.
+struct GaitGrids {
+  explicit GaitGrids(const GaitOptions& o)
+      : ss(o.ss_nodes), ds(o.ds_nodes), ds_piece(o.ds_nodes) {}
+  ChebyshevGrid ss, ds, ds_piece;
+};
 
 // Values of one evaluation with first derivatives with respect to the parameters.
 struct GaitGradient {
@@ -29,14 +38,14 @@ class GaitEvaluator {
   const Model& model() const { return model_; }
   const GaitOptions& options() const { return options_; }
   const ConstraintLayout& layout() const { return layout_; }
-  const ChebyshevGrid& ssGrid() const { return ss_grid_; }
-  const ChebyshevGrid& dsGrid() const { return ds_grid_; }
+  const ChebyshevGrid& ssGrid() const { return grids_.ss; }
+  const ChebyshevGrid& dsGrid() const { return grids_.ds; }
 
  private:
   Model model_;
   GaitOptions options_;
   ConstraintLayout layout_;
-  ChebyshevGrid ss_grid_, ds_grid_;
+  GaitGrids grids_;
 };
 
 }  // namespace gaitopt

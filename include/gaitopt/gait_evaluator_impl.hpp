@@ -24,9 +24,10 @@ template <class S> struct EvalContext {
   const ConstraintLayout& layout;
   const ChebyshevGrid& ss_grid;
   const ChebyshevGrid& ds_grid;
+  const ChebyshevGrid& piece_grid;
   const GaitVector<S>& p;
   GaitEvaluation<S>& out;
-  const std::vector<double>* ds_switches;  // known DS branch switches (from a double pass)
+  const DsPieces* known_pieces;  // DS quadrature pieces found by a double pass, or null
 
   void set(int group, int index, const S& value, ConstraintState state) {
     const int k = layout[group].offset + index;
@@ -296,7 +297,7 @@ template <class S> bool dsReachStage(EvalContext<S>& c) {
 
 template <class S> struct PhaseSample {
   int branch = 0;  // DS force-distribution formula (ds_force_distribution.hpp)
-  std::array<double, 6> switching{};
+  std::array<S, 6> switching{};
   Vector5<S> q, qd, qdd;
   Vector4<S> gamma_star, omega;
   Vector2<S> R1, R2, foot2, com;
@@ -324,7 +325,7 @@ PhaseSample<S> ssSample(const Model& m, const SsPathPoint<S>& pt, const S& alpha
 
 template <class S>
 PhaseSample<S> dsSample(const Model& m, const GaitOptions& o, const GaitMotion<S>& mo,
-                        const S& t) {
+                        const S& t, int forced_branch = kBranchFree) {
   const DsPrescribed<S> pr = dsPrescribed(mo, t);
   PhaseSample<S> s;
   const Vector2<S> leg2 = leg2InverseKinematics(m, pr.alpha, pr.d1,
@@ -345,12 +346,14 @@ PhaseSample<S> dsSample(const Model& m, const GaitOptions& o, const GaitMotion<S
   const double M = m.total_mass;
   const S R2z0 = aff.R2z0;                                          // (3.58)
   const S R1z0 = M * (aff.com_acceleration(1) + m.gravity) - R2z0;  // (3.59) corrected
-  const DsBounds<S> bounds =
-      r2xBounds(R1z0, R2z0, S(M * aff.com_acceleration(0)), o.friction_coefficient);
+  const DsBounds<S> bounds = r2xBounds(R1z0, R2z0, S(M * aff.com_acceleration(0)),
+                                       o.friction_coefficient,
+                                       forced_branch >= 0 ? forced_branch % 4 : kBranchFree);
   s.omega = jointSpeeds(s.qd);
   const DsChoice<S> choice = o.ds_distribution == DsDistribution::Torque
-                                ? r2xMinTorque(aff.J, aff.K, bounds)
-                                : r2xMinPower(aff.J, aff.K, s.omega, jouleCoefficient(m), bounds);
+                                ? r2xMinTorque(aff.J, aff.K, bounds, forced_branch)
+                                : r2xMinPower(aff.J, aff.K, s.omega, jouleCoefficient(m), bounds,
+                                              forced_branch);
   const S& R2x = choice.r2x;
   s.branch = choice.branch;
   s.switching = choice.switching;
@@ -435,43 +438,71 @@ template <class F> double switchTime(const F& fn, double lo, double f_lo, double
   return 0.5 * (lo + hi);
 }
 
-// Times where the DS force-distribution branch changes, from the sign changes of its continuous
-// switching functions between grid nodes. The criteria integrands are continuous there, so the
-// switch times carry no derivative (the Leibniz terms cancel) and are plain doubles.
+// DS pieces: the times where the force-distribution branch changes, from the sign changes of
+// its continuous switching functions between grid nodes, and the branch inside each piece. The
+// criteria integrands are continuous there, so the switch times carry no derivative (the Leibniz
+// terms cancel) and are plain doubles.
 template <class S>
-std::vector<double> dsBranchSwitches(EvalContext<S>& c, const Eigen::Matrix<S, Eigen::Dynamic, 1>& ts,
-                                     const std::vector<int>& branch,
-                                     const std::vector<std::array<double, 6>>& switching) {
-  std::vector<double> switches;
+DsPieces dsPieces(EvalContext<S>& c, const Eigen::Matrix<S, Eigen::Dynamic, 1>& ts,
+                  const std::vector<int>& branch,
+                  const std::vector<std::array<double, 6>>& switching) {
+  const auto phi = [&c](double t, int i) {
+    return valueOf(dsSample(c.model, c.options, c.out.motion, S(t)).switching[i]);
+  };
+  std::vector<std::pair<double, int>> found;
   for (std::size_t k = 0; k + 1 < switching.size(); ++k)
     for (int i = 0; i < 6 && branch[k] != branch[k + 1]; ++i) {
       const double a = switching[k][i], b = switching[k + 1][i];
       if ((a < 0.0) == (b < 0.0)) continue;
-      const auto fn = [&c, i](double t) {
-        return dsSample(c.model, c.options, c.out.motion, S(t)).switching[i];
-      };
-      switches.push_back(switchTime(fn, valueOf(ts(k)), a, valueOf(ts(k + 1)), b));
+      const auto fn = [&phi, i](double t) { return phi(t, i); };
+      found.push_back({switchTime(fn, valueOf(ts(k)), a, valueOf(ts(k + 1)), b), i});
     }
-  std::sort(switches.begin(), switches.end());
-  return switches;
+  std::sort(found.begin(), found.end());
+  DsPieces pieces;
+  const double h = 1e-7 * valueOf(c.out.motion.T_DS);
+  for (const auto& [t, i] : found) {
+    pieces.switch_times.push_back(t);
+    pieces.switch_function.push_back(i);
+    pieces.switch_rate.push_back((phi(t + h, i) - phi(t - h, i)) / (2.0 * h));
+  }
+  const double T = valueOf(c.out.motion.T_DS);
+  for (std::size_t i = 0; i <= found.size(); ++i) {
+    const double a = i == 0 ? 0.0 : found[i - 1].first;
+    const double b = i == found.size() ? T : found[i].first;
+    pieces.branches.push_back(dsSample(c.model, c.options, c.out.motion, S(0.5 * (a + b))).branch);
+  }
+  return pieces;
+}
+
+// A switch time with its parameter derivative from φ(t_s(p), p) = 0 (implicit function
+// theorem, as (3.146)): one Newton step from the located root, on the AD scalar.
+template <class S> S switchTimeWithDerivative(EvalContext<S>& c, const DsPieces& pieces, int j) {
+  const double t = pieces.switch_times[j];
+  const S phi = dsSample(c.model, c.options, c.out.motion, S(t), pieces.branches[j])
+                    .switching[pieces.switch_function[j]];
+  return S(t) - phi / pieces.switch_rate[j];
 }
 
 template <class S>
-std::array<S, 4> integrateDsPiecewise(EvalContext<S>& c, const std::vector<double>& switches) {
+std::array<S, 4> integrateDsPiecewise(EvalContext<S>& c, const DsPieces& pieces) {
   const GaitMotion<S>& mo = c.out.motion;
+  const std::vector<double>& sw = pieces.switch_times;
   std::array<S, 4> total{S(0.0), S(0.0), S(0.0), S(0.0)};
   std::array<Eigen::Matrix<S, Eigen::Dynamic, 1>, 4> f;
-  for (auto& v : f) v.resize(c.ds_grid.size());
-  for (std::size_t piece = 0; piece <= switches.size(); ++piece) {
-    const S a = piece == 0 ? S(0.0) : S(switches[piece - 1]);
-    const S b = piece == switches.size() ? mo.T_DS : S(switches[piece]);
-    const auto ts = mappedNodes(c.ds_grid, a, b);
-    for (int k = 0; k < c.ds_grid.size(); ++k) {
-      const std::array<S, 4> in =
-          criteriaIntegrands(c.model, dsSample(c.model, c.options, mo, S(ts(k))));
+  for (auto& v : f) v.resize(c.piece_grid.size());
+  std::vector<S> ends;
+  for (std::size_t j = 0; j < sw.size(); ++j)
+    ends.push_back(switchTimeWithDerivative(c, pieces, static_cast<int>(j)));
+  for (std::size_t piece = 0; piece <= sw.size(); ++piece) {
+    const S a = piece == 0 ? S(0.0) : ends[piece - 1];
+    const S b = piece == sw.size() ? mo.T_DS : ends[piece];
+    const auto ts = mappedNodes(c.piece_grid, a, b);
+    for (int k = 0; k < c.piece_grid.size(); ++k) {
+      const PhaseSample<S> s = dsSample(c.model, c.options, mo, S(ts(k)), pieces.branches[piece]);
+      const std::array<S, 4> in = criteriaIntegrands(c.model, s);
       for (int i = 0; i < 4; ++i) f[i](k) = in[i];
     }
-    const std::array<S, 4> part = integrateEach(c.ds_grid, f, a, b);
+    const std::array<S, 4> part = integrateEach(c.piece_grid, f, a, b);
     for (int i = 0; i < 4; ++i) total[i] += part[i];
   }
   return total;
@@ -504,7 +535,7 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
   std::vector<int> branch(nds);
   for (int k = 0; k < nds; ++k) {
     const PhaseSample<S> s = dsSample(c.model, o, mo, S(ts(k)));
-    switching[k] = s.switching;
+    for (int i = 0; i < 6; ++i) switching[k][i] = valueOf(s.switching[i]);
     branch[k] = s.branch;
     setPhaseConstraints(c, kTorqueDS, kJointLimitsDS, k, s, st);
     setContactConstraints(c, kFrictionConeDS, kNormalForceDS, 0, 2, k, s.R1, st);
@@ -513,11 +544,10 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
     const std::array<S, 4> in = criteriaIntegrands(c.model, s);
     for (int i = 0; i < 4; ++i) ds_int[i](k) = in[i];
   }
-  if (!c.ds_switches) c.out.ds_switch_times = dsBranchSwitches(c, ts, branch, switching);
-  const std::vector<double>& switches = c.ds_switches ? *c.ds_switches : c.out.ds_switch_times;
-  std::array<S, 4> ds_total =
-      switches.empty() ? integrateEach(c.ds_grid, ds_int, S(0.0), mo.T_DS)
-                       : integrateDsPiecewise(c, switches);
+  c.out.ds_pieces = c.known_pieces ? *c.known_pieces : dsPieces(c, ts, branch, switching);
+  const std::array<S, 4> ds_total = c.out.ds_pieces.switch_times.empty()
+                                        ? integrateEach(c.ds_grid, ds_int, S(0.0), mo.T_DS)
+                                        : integrateDsPiecewise(c, c.out.ds_pieces);
   std::array<S, 4> crit;
   for (int i = 0; i < 4; ++i)
     crit[i] = (integrateOverInterval(c.ss_grid, ss_int[i], mo.alpha_iSS, mo.alpha_fSS) +
@@ -532,13 +562,14 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
 
 template <class S>
 void evaluateGaitImpl(const Model& model, const GaitOptions& options,
-                      const ConstraintLayout& layout, const ChebyshevGrid& ss_grid,
-                      const ChebyshevGrid& ds_grid, const GaitVector<S>& p,
-                      GaitEvaluation<S>& out, const std::vector<double>* ds_switches = nullptr) {
+                      const ConstraintLayout& layout, const GaitGrids& grids,
+                      const GaitVector<S>& p, GaitEvaluation<S>& out,
+                      const DsPieces* known_pieces = nullptr) {
   out = GaitEvaluation<S>();
   out.g.assign(layout.size(), S(0.0));
   out.state.assign(layout.size(), ConstraintState::NotComputed);
-  EvalContext<S> c{model, options, layout, ss_grid, ds_grid, p, out, ds_switches};
+  EvalContext<S> c{model,   options, layout, grids.ss, grids.ds, grids.ds_piece,
+                   p,       out,     known_pieces};
   const bool boundary_ok = boundaryStage(c);
   out.step_length = p(kStepLength);
   out.T_DS = p(kTDS);

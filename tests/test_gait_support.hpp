@@ -1,0 +1,26 @@
+#pragma once
+// Shared fixtures for the gait tests: a DEFINED step of the default robot (levels 0–4 hold;
+// some level-5 constraints are violated, which does not matter for consistency tests) and the
+// evaluator of the default robot with default options.
+#include "gaitopt/gait_evaluator.hpp"
+#include "gaitopt/gait_options.hpp"
+#include "gaitopt/gait_parameters.hpp"
+#include "test_support.hpp"
+
+namespace gaitopt::test {
+
+// In the order of kGaitParameterNames: alpha_iDS, delta1_iDS, theta3_iDS, d, alpha_fDS,
+// delta1_fDS, theta3_fDS, delta1_int, theta3_int, x2r_int, z2_int, alphadot_iSS, delta1s_iSS,
+// delta2s_iSS, delta1s_fSS, delta2s_fSS, T_DS.
+inline GaitParameters definedStep() {
+  GaitParameters p;
+  p << -0.044819, -2.593492, 1.520796, 0.35, -0.190837, -2.495513, 1.520796, -2.445513,
+      1.520796, 0.0, 0.06, -0.9, 0.3, 0.3, 0.3, 0.3, 0.12;
+  return p;
+}
+
+inline GaitEvaluator defaultGaitEvaluator(const GaitOptions& options = {}) {
+  return GaitEvaluator(robotFile("rabbit_miossec"), options);
+}
+
+}  // namespace gaitopt::test
