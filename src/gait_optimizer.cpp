@@ -1,0 +1,169 @@
+#include "gaitopt/gait_optimizer.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace gaitopt {
+namespace {
+
+// A scaled constraint value g/scale at or below this counts as met (ten times the solver's own
+// feasibility tolerance, to absorb the last iterate's slack); also applies to |speed − v|.
+constexpr double kFeasibilityTol = 1e-6;
+// Exchange method for the semi-infinite constraints: a grid entry joins the NLP once its
+// scaled value exceeds −kScreenThreshold; the full grid is re-checked after each solve.
+constexpr double kScreenThreshold = 0.3;
+constexpr int kMaxExchangeRounds = 8;
+
+NlpSolution solve(NlpProblem& problem, const SolverSettings& s, const std::string& label,
+                  std::ostream* log) {
+  NlpSettings ns;
+  ns.max_iter = s.max_iter;
+  ns.tol = s.tol;
+  ns.ipopt_options = s.ipopt_options;
+  ns.label = label;
+  ns.print_every = s.print_every;
+  ns.log = log;
+  switch (s.backend) {
+    case Backend::NloptSlsqp: return solveWithNlopt(problem, ns, NloptMethod::Slsqp);
+    case Backend::NloptCobyla: return solveWithNlopt(problem, ns, NloptMethod::Cobyla);
+    default: return solveWithIpopt(problem, ns);
+  }
+}
+
+double scaledValue(const GaitEvaluator& ev, const GaitEvaluation<double>& e, int k) {
+  return e.g[k] / constraintScale(ev.layout(), ev.model(), k);
+}
+
+// Lowest level ≤ max_level with a violated (computed) entry, −1 if none.
+int lowestViolatedLevel(const GaitEvaluator& ev, const GaitEvaluation<double>& e, int max_level) {
+  const ConstraintLayout& layout = ev.layout();
+  int lowest = -1;
+  for (int k = 0; k < layout.size(); ++k)
+    if (e.state[k] != ConstraintState::NotComputed && layout.levelOf(k) <= max_level &&
+        scaledValue(ev, e, k) > kFeasibilityTol && (lowest < 0 || layout.levelOf(k) < lowest))
+      lowest = layout.levelOf(k);
+  return lowest;
+}
+
+// Adds to `entries` the grid entries of levels ≤ max_level that are violated, close to active,
+// or not computable at the evaluation; returns how many were added.
+int screenEntries(const GaitEvaluator& ev, const GaitEvaluation<double>& e, int max_level,
+                  std::vector<int>& entries) {
+  std::vector<bool> in(ev.layout().size(), false);
+  for (int k : entries) in[k] = true;
+  int added = 0;
+  for (int k : hierarchyEntries(ev.layout(), max_level))
+    if (!in[k] && (e.state[k] == ConstraintState::NotComputed ||
+                   scaledValue(ev, e, k) > -kScreenThreshold)) {
+      entries.push_back(k);
+      ++added;
+    }
+  std::sort(entries.begin(), entries.end());
+  return added;
+}
+
+// Solves one stage with the exchange method; `build` adds the cost (and speed) to a problem.
+template <class Build>
+NlpSolution solveStage(GaitEvaluationCache& cache, const GaitParameters& start, int max_level,
+                       const SolverSettings& s, const std::string& label, std::ostream* log,
+                       OptimizationResult& result, const Build& build) {
+  const GaitEvaluator& ev = cache.evaluator();
+  std::vector<int> entries;
+  screenEntries(ev, cache.values(start), max_level, entries);
+  NlpSolution sol;
+  sol.x = start;
+  for (int round = 0; round < kMaxExchangeRounds; ++round) {
+    NlpProblem problem(gaitVariables(ev.model(), sol.x));
+    build(problem);
+    problem.addConstraints(makeHierarchyConstraints(cache, entries));
+    const std::string name = label + " (" + std::to_string(entries.size()) + " grid entries)";
+    const NlpSolution next = solve(problem, s, name, log);
+    result.stages.push_back({name, next.status, next.iterations});
+    result.iterations += next.iterations;
+    sol = next;
+    if (screenEntries(ev, cache.values(sol.x), max_level, entries) == 0) break;
+  }
+  return sol;
+}
+
+// Nearest point (scaled norm) satisfying the levels ≤ max_level, (3.78).
+GaitParameters project(GaitEvaluationCache& cache, const GaitParameters& start, int max_level,
+                       const SolverSettings& s, const std::string& label, std::ostream* log,
+                       OptimizationResult& result) {
+  return solveStage(cache, start, max_level, s, label, log, result, [&](NlpProblem& problem) {
+    problem.addCost(makeDistanceCost(start));
+  }).x;
+}
+
+void classify(const GaitEvaluator& ev, const OptimizationRequest& req, NlpStatus solver_status,
+              OptimizationResult& r) {
+  const GaitEvaluation<double>& e = r.evaluation;
+  const ConstraintLayout& layout = ev.layout();
+  r.constraint_violation = 0.0;
+  for (int k = 0; k < layout.size(); ++k)
+    if (e.state[k] != ConstraintState::NotComputed) r.constraint_violation = std::max(r.constraint_violation, e.g[k]);
+  const bool speed_unmet = req.speed && std::abs(e.speed - *req.speed) > kFeasibilityTol;
+  if (req.speed) r.constraint_violation = std::max(r.constraint_violation, std::abs(e.speed - *req.speed));
+  r.unmet_level = lowestViolatedLevel(ev, e, 5);
+  if (speed_unmet && r.unmet_level < 0) r.unmet_level = 5;
+  for (const ConstraintGroup& g : layout.groups())
+    for (int k = 0; k < g.count; ++k)
+      if (g.level == r.unmet_level && e.state[g.offset + k] != ConstraintState::NotComputed &&
+          scaledValue(ev, e, g.offset + k) > kFeasibilityTol) {
+        r.unmet_constraints.push_back(g.name);
+        break;
+      }
+  if (speed_unmet && r.unmet_level == 5) r.unmet_constraints.push_back("speed");
+  const bool feasible = r.unmet_level < 0 && e.motion_computed;
+  if (feasible && solver_status == NlpStatus::Solved) r.status = "optimal";
+  else if (solver_status == NlpStatus::MaxIterations) r.status = "max_iter";
+  else if (!feasible) r.status = "infeasible";
+  else r.status = "failed";
+}
+
+}  // namespace
+
+const char* backendName(Backend b) {
+  return b == Backend::Ipopt ? "ipopt" : b == Backend::NloptSlsqp ? "nlopt_slsqp" : "nlopt_cobyla";
+}
+
+const char* strategyName(HierarchyStrategy s) {
+  return s == HierarchyStrategy::Staged ? "staged" : "direct";
+}
+
+OptimizationResult optimizeGait(const GaitEvaluator& ev, const OptimizationRequest& req,
+                                std::ostream* log) {
+  const auto t0 = std::chrono::steady_clock::now();
+  OptimizationResult r;
+  GaitEvaluationCache cache(ev);
+  GaitParameters p = gaitVariables(ev.model(), req.initial).initial;
+  if (req.solver.hierarchy == HierarchyStrategy::Staged) {
+    int failed = lowestViolatedLevel(ev, cache.values(p), 4);
+    if (failed >= 0 && failed <= 1)
+      p = project(cache, p, 1, req.solver, "levels 0-1", log, r);
+    failed = lowestViolatedLevel(ev, cache.values(p), 4);
+    if (failed >= 0)
+      p = project(cache, p, 4, req.solver, "levels 0-4", log, r);
+  }
+  NlpStatus status = NlpStatus::Failed;
+  if (cache.values(p).motion_computed) {
+    // Objective of order one at the start, so the solver's tolerances are relative.
+    const double scale = std::max(1.0, std::abs(criterionValue(cache.values(p), req.criterion)));
+    const NlpSolution sol = solveStage(cache, p, 5, req.solver, "full", log, r, [&](NlpProblem& problem) {
+      problem.addCost(makeCriterionCost(cache, req.criterion, scale));
+      if (req.speed) problem.addConstraints(makeSpeedConstraint(cache, *req.speed));
+    });
+    status = sol.status;
+    p = sol.x;
+  }
+  r.parameters = p;
+  r.evaluation = ev.evaluate(p);
+  classify(ev, req, status, r);
+  r.function_evaluations = cache.valueEvaluations();
+  r.gradient_evaluations = cache.gradientEvaluations();
+  r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace gaitopt

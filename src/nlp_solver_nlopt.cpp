@@ -1,0 +1,104 @@
+// NLopt adapter. NLopt has no "cannot evaluate" answer, so an undefined step stops the run
+// (nlopt::forced_stop) and the best defined point is returned.
+#include <nlopt.hpp>
+
+#include "gaitopt/nlp_solver.hpp"
+
+namespace gaitopt {
+namespace {
+
+struct NloptContext {
+  NlpProblem& problem;
+  const NlpSettings& settings;
+  int evaluations = 0;
+  VectorX last_x;
+};
+
+double objective(unsigned n, const double* x, double* grad, void* data) {
+  auto* c = static_cast<NloptContext*>(data);
+  const VectorX v = Eigen::Map<const VectorX>(x, n);
+  double f = 0.0;
+  VectorX g;
+  if (!c->problem.cost(v, f) || (grad && !c->problem.costGradient(v, g))) throw nlopt::forced_stop();
+  if (grad) Eigen::Map<VectorX>(grad, n) = g;
+  ++c->evaluations;
+  c->last_x = v;
+  if (c->settings.log && c->settings.print_every > 0 && c->evaluations % c->settings.print_every == 0)
+    *c->settings.log << "[" << c->settings.label << "] eval " << c->evaluations << "  objective "
+                     << f << "\n";
+  return f;
+}
+
+// NLopt wants c(x) ≤ 0: each row gives (g − upper) and, only where the lower bound is finite,
+// (lower − g); an equality (lower = upper) thus becomes two opposite inequalities.
+struct RowMap {
+  std::vector<int> upper_rows, lower_rows;
+  VectorX lower, upper;
+};
+
+RowMap rowMap(const NlpProblem& p) {
+  RowMap r;
+  p.constraintBounds(r.lower, r.upper);
+  for (int i = 0; i < r.lower.size(); ++i) {
+    if (r.upper(i) < 1e19) r.upper_rows.push_back(i);
+    if (r.lower(i) > -1e19) r.lower_rows.push_back(i);
+  }
+  return r;
+}
+
+struct ConstraintContext {
+  NloptContext* base;
+  RowMap rows;
+};
+
+void constraints(unsigned, double* result, unsigned n, const double* x, double* grad, void* data) {
+  auto* c = static_cast<ConstraintContext*>(data);
+  const VectorX v = Eigen::Map<const VectorX>(x, n);
+  VectorX g;
+  MatrixX jac;
+  if (!c->base->problem.constraints(v, g) || (grad && !c->base->problem.constraintJacobian(v, jac)))
+    throw nlopt::forced_stop();
+  int out = 0;
+  for (int sign : {1, -1})
+    for (int i : sign > 0 ? c->rows.upper_rows : c->rows.lower_rows) {
+      result[out] = sign > 0 ? g(i) - c->rows.upper(i) : c->rows.lower(i) - g(i);
+      if (grad)
+        for (unsigned j = 0; j < n; ++j) grad[out * n + j] = sign * jac(i, j);
+      ++out;
+    }
+}
+
+}  // namespace
+
+NlpSolution solveWithNlopt(NlpProblem& problem, const NlpSettings& settings, NloptMethod method) {
+  const VariableSet& vars = problem.variables();
+  const unsigned n = static_cast<unsigned>(vars.size());
+  nlopt::opt opt(method == NloptMethod::Slsqp ? nlopt::LD_SLSQP : nlopt::LN_COBYLA, n);
+  NloptContext ctx{problem, settings, 0, vars.initial};
+  opt.set_lower_bounds(std::vector<double>(vars.lower.data(), vars.lower.data() + n));
+  opt.set_upper_bounds(std::vector<double>(vars.upper.data(), vars.upper.data() + n));
+  opt.set_min_objective(objective, &ctx);
+  ConstraintContext cctx{&ctx, rowMap(problem)};
+  const std::size_t m = cctx.rows.upper_rows.size() + cctx.rows.lower_rows.size();
+  opt.add_inequality_mconstraint(constraints, &cctx, std::vector<double>(m, settings.constraint_tol));
+  opt.set_ftol_rel(settings.tol);
+  opt.set_xtol_rel(settings.tol);
+  opt.set_maxeval(method == NloptMethod::Slsqp ? settings.max_iter : 50 * settings.max_iter);
+  std::vector<double> x(vars.initial.data(), vars.initial.data() + n);
+  NlpSolution sol;
+  double f = 0.0;
+  try {
+    const nlopt::result r = opt.optimize(x, f);
+    sol.status = r == nlopt::MAXEVAL_REACHED ? NlpStatus::MaxIterations : NlpStatus::Solved;
+    sol.x = Eigen::Map<const VectorX>(x.data(), n);
+  } catch (const std::exception& e) {
+    sol.status = NlpStatus::Failed;
+    sol.x = ctx.last_x;
+    sol.message = e.what();
+  }
+  sol.objective = f;
+  sol.iterations = ctx.evaluations;
+  return sol;
+}
+
+}  // namespace gaitopt
