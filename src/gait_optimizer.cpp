@@ -70,7 +70,10 @@ NlpSolution solveStage(GaitEvaluationCache& cache, const GaitParameters& start, 
                        OptimizationResult& result, const Build& build) {
   const GaitEvaluator& ev = cache.evaluator();
   std::vector<int> entries;
-  screenEntries(ev, cache.values(start), max_level, entries);
+  if (s.constraint_exchange)
+    screenEntries(ev, cache.values(start), max_level, entries);
+  else
+    entries = hierarchyEntries(ev.layout(), max_level);
   NlpSolution sol;
   sol.x = start;
   for (int round = 0; round < kMaxExchangeRounds; ++round) {

@@ -1,11 +1,16 @@
-// NLopt adapter. NLopt has no "cannot evaluate" answer, so an undefined step stops the run
-// (nlopt::forced_stop) and the best defined point is returned.
+// NLopt adapter. NLopt has no "cannot evaluate" answer: at an undefined step the objective is
+// reported as kUndefinedCost and every constraint as violated, so SLSQP's line search on its
+// merit function backtracks, the role Ipopt's "cannot evaluate" plays.
+#include <algorithm>
 #include <nlopt.hpp>
 
 #include "gaitopt/nlp_solver.hpp"
 
 namespace gaitopt {
 namespace {
+
+constexpr double kUndefinedCost = 1e20;
+constexpr double kUndefinedViolation = 1e3;
 
 struct NloptContext {
   NlpProblem& problem;
@@ -19,7 +24,10 @@ double objective(unsigned n, const double* x, double* grad, void* data) {
   const VectorX v = Eigen::Map<const VectorX>(x, n);
   double f = 0.0;
   VectorX g;
-  if (!c->problem.cost(v, f) || (grad && !c->problem.costGradient(v, g))) throw nlopt::forced_stop();
+  if (!c->problem.cost(v, f) || (grad && !c->problem.costGradient(v, g))) {
+    if (grad) Eigen::Map<VectorX>(grad, n).setZero();
+    return kUndefinedCost;
+  }
   if (grad) Eigen::Map<VectorX>(grad, n) = g;
   ++c->evaluations;
   c->last_x = v;
@@ -56,8 +64,12 @@ void constraints(unsigned, double* result, unsigned n, const double* x, double* 
   const VectorX v = Eigen::Map<const VectorX>(x, n);
   VectorX g;
   MatrixX jac;
-  if (!c->base->problem.constraints(v, g) || (grad && !c->base->problem.constraintJacobian(v, jac)))
-    throw nlopt::forced_stop();
+  const std::size_t rows = c->rows.upper_rows.size() + c->rows.lower_rows.size();
+  if (!c->base->problem.constraints(v, g) || (grad && !c->base->problem.constraintJacobian(v, jac))) {
+    std::fill(result, result + rows, kUndefinedViolation);
+    if (grad) std::fill(grad, grad + rows * n, 0.0);
+    return;
+  }
   int out = 0;
   for (int sign : {1, -1})
     for (int i : sign > 0 ? c->rows.upper_rows : c->rows.lower_rows) {

@@ -19,12 +19,15 @@ enum class HierarchyStrategy { Staged, Direct };
 enum class Backend { Ipopt, NloptSlsqp, NloptCobyla };
 
 struct SolverSettings {
-  Backend backend = Backend::Ipopt;
+  Backend backend = Backend::NloptSlsqp;  // measured faster than Ipopt here (README)
   HierarchyStrategy hierarchy = HierarchyStrategy::Staged;
   int max_iter = 500;
-  double tol = 1e-6;
+  double tol = 1e-8;
   std::vector<std::pair<std::string, std::string>> ipopt_options;
   int print_every = 1;
+  // Exchange method for the grid constraints (only near-active entries in each NLP, re-checked
+  // on the full grid after each solve); false: every grid entry in one NLP.
+  bool constraint_exchange = true;
 };
 
 struct OptimizationRequest {
