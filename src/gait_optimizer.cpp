@@ -99,6 +99,12 @@ GaitParameters project(GaitEvaluationCache& cache, const GaitParameters& start, 
   }).x;
 }
 
+bool meetsAll(const GaitEvaluator& ev, const OptimizationRequest& req,
+              const GaitEvaluation<double>& e) {
+  return e.motion_computed && lowestViolatedLevel(ev, e, 5) < 0 &&
+         (!req.speed || std::abs(e.speed - *req.speed) <= kFeasibilityTol);
+}
+
 void classify(const GaitEvaluator& ev, const OptimizationRequest& req, NlpStatus solver_status,
               OptimizationResult& r) {
   const GaitEvaluation<double>& e = r.evaluation;
@@ -139,7 +145,7 @@ OptimizationResult optimizeGait(const GaitEvaluator& ev, const OptimizationReque
                                 std::ostream* log) {
   const auto t0 = std::chrono::steady_clock::now();
   OptimizationResult r;
-  GaitEvaluationCache cache(ev);
+  GaitEvaluationCache cache(ev, req.solver.gradients);
   GaitParameters p = gaitVariables(ev.model(), req.initial).initial;
   if (req.solver.hierarchy == HierarchyStrategy::Staged) {
     int failed = lowestViolatedLevel(ev, cache.values(p), 4);
@@ -153,12 +159,20 @@ OptimizationResult optimizeGait(const GaitEvaluator& ev, const OptimizationReque
   if (cache.values(p).motion_computed) {
     // Objective of order one at the start, so the solver's tolerances are relative.
     const double scale = std::max(1.0, std::abs(criterionValue(cache.values(p), req.criterion)));
-    const NlpSolution sol = solveStage(cache, p, 5, req.solver, "full", log, r, [&](NlpProblem& problem) {
-      problem.addCost(makeCriterionCost(cache, req.criterion, scale));
-      if (req.speed) problem.addConstraints(makeSpeedConstraint(cache, *req.speed));
-    });
-    status = sol.status;
-    p = sol.x;
+    // A quasi-Newton model built across the kinks of the semi-infinite constraints can stall
+    // the solver slightly infeasible; a restart from its point rebuilds the model.
+    for (int attempt = 0; attempt <= req.solver.max_restarts; ++attempt) {
+      const std::string label = attempt == 0 ? "full" : "full restart " + std::to_string(attempt);
+      const NlpSolution sol =
+          solveStage(cache, p, 5, req.solver, label, log, r, [&](NlpProblem& problem) {
+            problem.addCost(makeCriterionCost(cache, req.criterion, scale));
+            if (req.speed) problem.addConstraints(makeSpeedConstraint(cache, *req.speed));
+          });
+      if (!cache.values(sol.x).motion_computed) break;
+      status = sol.status;
+      p = sol.x;
+      if (status == NlpStatus::Solved && meetsAll(ev, req, cache.values(p))) break;
+    }
   }
   r.parameters = p;
   r.evaluation = ev.evaluate(p);

@@ -16,9 +16,9 @@ template <class S> struct GaitMotion {
   S d = S(0.0), T_DS = S(0.0), T_SS = S(0.0);
   Vector5<S> q_iDS, q_fDS, q_int, q_iSS, q_fSS;
   S alpha_iSS = S(0.0), alpha_int = S(0.0), alpha_fSS = S(0.0);
-  std::array<LocalQuartic<S>, 4> ss_path;  // δ1..δ4 as functions of α (3.2)
-  LocalQuartic<S> ds_delta1, ds_delta2;    // δ1, δ2 as functions of α (3.3)
-  LocalQuartic<S> ds_alpha;                // α as a function of t (3.4)
+  std::array<LocalPolynomial<S>, 4> ss_path;  // δ1..δ4 as functions of α (3.2)
+  LocalPolynomial<S> ds_delta1, ds_delta2;    // δ1, δ2 as functions of α (3.3)
+  LocalPolynomial<S> ds_alpha;                // α as a function of t (3.4)
   S alphadot_iSS = S(0.0);                 // after the saturation (3.56)
   S f_iSS = S(0.0);                        // max(f(α_iSS), f_min)
   S alphadot_fSS = S(0.0), kappa = S(0.0);

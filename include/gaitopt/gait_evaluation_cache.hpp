@@ -7,9 +7,16 @@
 
 namespace gaitopt {
 
+enum class GradientMode {
+  Exact,            // forward-mode AD through the evaluation
+  FiniteDifference  // central differences of the values, for comparison (§3.6.4)
+};
+
 class GaitEvaluationCache {
  public:
-  explicit GaitEvaluationCache(const GaitEvaluator& evaluator) : evaluator_(evaluator) {}
+  explicit GaitEvaluationCache(const GaitEvaluator& evaluator,
+                               GradientMode mode = GradientMode::Exact)
+      : evaluator_(evaluator), mode_(mode) {}
   const GaitEvaluator& evaluator() const { return evaluator_; }
   const GaitEvaluation<double>& values(const GaitParameters& p);
   const GaitGradient& gradient(const GaitParameters& p);
@@ -17,7 +24,10 @@ class GaitEvaluationCache {
   int gradientEvaluations() const { return gradient_count_; }
 
  private:
+  GaitGradient finiteDifferenceGradient(const GaitParameters& p);
+
   const GaitEvaluator& evaluator_;
+  GradientMode mode_;
   std::optional<GaitParameters> value_at_, gradient_at_;
   GaitEvaluation<double> values_;
   GaitGradient gradient_;

@@ -141,8 +141,10 @@ template <class S> void buildSsPaths(EvalContext<S>& c, Vector5<S>& qs_iSS, Vect
   qs_iSS = liftOffSlopes(c.model, mo.q_iSS, p(kDelta1sISS), p(kDelta2sISS));
   qs_fSS = liftOffSlopes(c.model, mo.q_fSS, p(kDelta1sFSS), p(kDelta2sFSS));
   for (int j = 0; j < 4; ++j)  // (3.25)
-    mo.ss_path[j] = quarticThrough(mo.alpha_iSS, mo.q_iSS(j + 1), qs_iSS(j + 1), mo.alpha_int,
-                                   mo.q_int(j + 1), mo.alpha_fSS, mo.q_fSS(j + 1), qs_fSS(j + 1));
+    mo.ss_path[j] = polynomialThrough(mo.alpha_iSS, mo.q_iSS(j + 1), qs_iSS(j + 1),
+                                      std::vector<S>{mo.alpha_int},
+                                      std::vector<S>{S(mo.q_int(j + 1))}, mo.alpha_fSS,
+                                      mo.q_fSS(j + 1), qs_fSS(j + 1));
 }
 
 // Model terms along the SS path at one α, independent of the time law:

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "gaitopt/gait_evaluation_cache.hpp"
 #include "gaitopt/gait_evaluator.hpp"
 #include "gaitopt/gait_problem.hpp"
 #include "gaitopt/nlp_solver.hpp"
@@ -28,6 +29,8 @@ struct SolverSettings {
   // Exchange method for the grid constraints (only near-active entries in each NLP, re-checked
   // on the full grid after each solve); false: every grid entry in one NLP.
   bool constraint_exchange = true;
+  GradientMode gradients = GradientMode::Exact;
+  int max_restarts = 3;  // of the full stage, from the last point, when it ends unmet
 };
 
 struct OptimizationRequest {
