@@ -19,6 +19,16 @@ inline GaitParameters definedStep() {
   return p;
 }
 
+// The C_Gamma-optimal step of the default robot at 0.5 m/s (gaitopt optimize, nlopt_slsqp,
+// C_Gamma = 9122.63 N²·m·s): every constraint holds.
+inline GaitParameters optimalStep() {
+  GaitParameters p;
+  p << 0.0192773503, -2.65033763, 1.38578892, 0.30881926, -0.0335627699, -2.6061693, 1.37072667,
+      -2.56752143, 1.37135822, 0.0589803378, 0.0297501461, -1.02042521, -0.399879997,
+      0.157357809, 0.602535363, 1.13725619, 0.037402875;
+  return p;
+}
+
 inline GaitEvaluator defaultGaitEvaluator(const GaitOptions& options = {}) {
   return GaitEvaluator(robotFile("rabbit_miossec"), options);
 }
