@@ -14,6 +14,9 @@ constexpr double kFeasibilityTol = 1e-6;
 // scaled value exceeds −kScreenThreshold; the full grid is re-checked after each solve.
 constexpr double kScreenThreshold = 0.3;
 constexpr int kMaxExchangeRounds = 8;
+// Projections aim this far inside the lower levels (scaled units): a point on their boundary
+// (e.g. a DS with the minimum α range) is a poor start for the next stage.
+constexpr double kProjectionInterior = 0.05;
 
 NlpSolution solve(NlpProblem& problem, const SolverSettings& s, const std::string& label,
                   std::ostream* log) {
@@ -66,8 +69,8 @@ int screenEntries(const GaitEvaluator& ev, const GaitEvaluation<double>& e, int 
 // Solves one stage with the exchange method; `build` adds the cost (and speed) to a problem.
 template <class Build>
 NlpSolution solveStage(GaitEvaluationCache& cache, const GaitParameters& start, int max_level,
-                       const SolverSettings& s, const std::string& label, std::ostream* log,
-                       OptimizationResult& result, const Build& build) {
+                       double interior, const SolverSettings& s, const std::string& label,
+                       std::ostream* log, OptimizationResult& result, const Build& build) {
   const GaitEvaluator& ev = cache.evaluator();
   std::vector<int> entries;
   if (s.constraint_exchange)
@@ -79,7 +82,7 @@ NlpSolution solveStage(GaitEvaluationCache& cache, const GaitParameters& start, 
   for (int round = 0; round < kMaxExchangeRounds; ++round) {
     NlpProblem problem(gaitVariables(ev.model(), sol.x));
     build(problem);
-    problem.addConstraints(makeHierarchyConstraints(cache, entries));
+    problem.addConstraints(makeHierarchyConstraints(cache, entries, interior));
     const std::string name = label + " (" + std::to_string(entries.size()) + " grid entries)";
     const NlpSolution next = solve(problem, s, name, log);
     result.stages.push_back({name, next.status, next.iterations});
@@ -94,9 +97,13 @@ NlpSolution solveStage(GaitEvaluationCache& cache, const GaitParameters& start, 
 GaitParameters project(GaitEvaluationCache& cache, const GaitParameters& start, int max_level,
                        const SolverSettings& s, const std::string& label, std::ostream* log,
                        OptimizationResult& result) {
-  return solveStage(cache, start, max_level, s, label, log, result, [&](NlpProblem& problem) {
-    problem.addCost(makeDistanceCost(start));
-  }).x;
+  // Ipopt for every projection: it refuses undefined trial points natively (eval returns
+  // false), where SLSQP's backtracking on a huge cost measured unreliable.
+  SolverSettings projection = s;
+  projection.backend = Backend::Ipopt;
+  return solveStage(cache, start, max_level, kProjectionInterior, projection, label, log, result,
+                    [&](NlpProblem& problem) { problem.addCost(makeDistanceCost(start)); })
+      .x;
 }
 
 bool meetsAll(const GaitEvaluator& ev, const OptimizationRequest& req,
@@ -124,10 +131,12 @@ void classify(const GaitEvaluator& ev, const OptimizationRequest& req, NlpStatus
         break;
       }
   if (speed_unmet && r.unmet_level == 5) r.unmet_constraints.push_back("speed");
+  // The final point decides first: an unmet constraint is "infeasible" whatever the solver
+  // says; a feasible point is "optimal" only if the solver also converged.
   const bool feasible = r.unmet_level < 0 && e.motion_computed;
-  if (feasible && solver_status == NlpStatus::Solved) r.status = "optimal";
+  if (!feasible) r.status = "infeasible";
+  else if (solver_status == NlpStatus::Solved) r.status = "optimal";
   else if (solver_status == NlpStatus::MaxIterations) r.status = "max_iter";
-  else if (!feasible) r.status = "infeasible";
   else r.status = "failed";
 }
 
@@ -148,12 +157,14 @@ OptimizationResult optimizeGait(const GaitEvaluator& ev, const OptimizationReque
   GaitEvaluationCache cache(ev, req.solver.gradients);
   GaitParameters p = gaitVariables(ev.model(), req.initial).initial;
   if (req.solver.hierarchy == HierarchyStrategy::Staged) {
-    int failed = lowestViolatedLevel(ev, cache.values(p), 4);
-    if (failed >= 0 && failed <= 1)
-      p = project(cache, p, 1, req.solver, "levels 0-1", log, r);
-    failed = lowestViolatedLevel(ev, cache.values(p), 4);
-    if (failed >= 0)
-      p = project(cache, p, 4, req.solver, "levels 0-4", log, r);
+    // Project onto levels 0–1, then 0–4, as long as the evaluator finds a failed level below 5
+    // (a projection that stalls is restarted from its own point).
+    for (int pass = 0; pass < 2 * (req.solver.max_restarts + 1); ++pass) {
+      const int failed = cache.values(p).failed_level;
+      if (failed < 0 || failed > 4) break;
+      const int target = failed <= 1 ? 1 : 4;
+      p = project(cache, p, target, req.solver, "levels 0-" + std::to_string(target), log, r);
+    }
   }
   NlpStatus status = NlpStatus::Failed;
   if (cache.values(p).motion_computed) {
@@ -161,14 +172,21 @@ OptimizationResult optimizeGait(const GaitEvaluator& ev, const OptimizationReque
     const double scale = std::max(1.0, std::abs(criterionValue(cache.values(p), req.criterion)));
     // A quasi-Newton model built across the kinks of the semi-infinite constraints can stall
     // the solver slightly infeasible; a restart from its point rebuilds the model.
+    SolverSettings settings = req.solver;
     for (int attempt = 0; attempt <= req.solver.max_restarts; ++attempt) {
       const std::string label = attempt == 0 ? "full" : "full restart " + std::to_string(attempt);
       const NlpSolution sol =
-          solveStage(cache, p, 5, req.solver, label, log, r, [&](NlpProblem& problem) {
+          solveStage(cache, p, 5, 1e-6, settings, label, log, r, [&](NlpProblem& problem) {
             problem.addCost(makeCriterionCost(cache, req.criterion, scale));
             if (req.speed) problem.addConstraints(makeSpeedConstraint(cache, *req.speed));
           });
-      if (!cache.values(sol.x).motion_computed) break;
+      // An NLopt run that broke down on undefined trial points restarts with Ipopt, which
+      // refuses them natively (with the exchange method, measured faster for Ipopt).
+      if (sol.status == NlpStatus::Failed && settings.backend != Backend::Ipopt) {
+        settings.backend = Backend::Ipopt;
+        settings.constraint_exchange = true;
+      }
+      if (!cache.values(sol.x).motion_computed) continue;  // restart from the last point
       status = sol.status;
       p = sol.x;
       if (status == NlpStatus::Solved && meetsAll(ev, req, cache.values(p))) break;

@@ -84,6 +84,7 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
     w.value(e.failed_level);
   }
   w.key("motion_computed").value(e.motion_computed);
+  w.key("numerically_undefined").value(e.numerically_undefined);
   w.key("robot").value(ev.model().robot.name);
 
   w.key("criteria");

@@ -137,6 +137,7 @@ GaitOptions parseGaitOptions(const YamlMap& m, ModelOptions& model_options) {
   o.alphadot_margin = nonNegativeOr(m, "alphadot_margin", o.alphadot_margin);
   o.ds_alphadot_max = negativeOr(m, "ds_alphadot_max", o.ds_alphadot_max);
   o.angle_margin = nonNegativeOr(m, "angle_margin", o.angle_margin);
+  o.ds_alpha_range_min = nonNegativeOr(m, "ds_alpha_range_min", o.ds_alpha_range_min);
   o.reach_margin = nonNegativeOr(m, "reach_margin", o.reach_margin);
   o.kappa_min = positiveOr(m, "kappa_min", o.kappa_min);
   o.joint_limit_margin = nonNegativeOr(m, "joint_limit_margin", o.joint_limit_margin);
@@ -197,6 +198,7 @@ std::string gaitOptionsYaml(const GaitOptions& o, const ModelOptions& mo, int in
   num("alphadot_margin", o.alphadot_margin);
   num("ds_alphadot_max", o.ds_alphadot_max);
   num("angle_margin", o.angle_margin);
+  num("ds_alpha_range_min", o.ds_alpha_range_min);
   num("reach_margin", o.reach_margin);
   num("kappa_min", o.kappa_min);
   num("joint_limit_margin", o.joint_limit_margin);

@@ -108,6 +108,13 @@ NlpSolution solveWithNlopt(NlpProblem& problem, const NlpSettings& settings, Nlo
     sol.x = ctx.last_x;
     sol.message = e.what();
   }
+  // SLSQP may end on a refused (undefined) trial point: fall back to the last defined one.
+  double check = 0.0;
+  if (!problem.cost(sol.x, check)) {
+    sol.x = ctx.last_x;
+    sol.status = NlpStatus::Failed;
+    f = problem.cost(sol.x, check) ? check : f;
+  }
   sol.objective = f;
   sol.iterations = ctx.evaluations;
   return sol;

@@ -186,6 +186,19 @@ std::optional<YamlMap> YamlMap::optionalMap(const std::string& key) const {
   return map(key);
 }
 
+std::vector<std::pair<std::string, std::string>> YamlMap::scalarEntries() const {
+  std::vector<std::pair<std::string, std::string>> entries;
+  for (const auto& kv : state_->node) {
+    const std::string key = kv.first.Scalar();
+    state_->known.insert(key);
+    if (!kv.second.IsScalar()) {
+      throw error(key, "expected a single value, got " + describe(kv.second));
+    }
+    entries.emplace_back(key, kv.second.Scalar());
+  }
+  return entries;
+}
+
 void YamlMap::rejectUnknownKeys() const {
   for (const auto& kv : state_->node) {
     if (state_->known.count(kv.first.Scalar()) == 0) {

@@ -524,3 +524,27 @@ TEST_CASE("DS distributions minimise their own criterion pointwise", "[gait]") {
   CHECK(ds_rows > 10);
   CHECK(differing > 0);  // the two rules genuinely differ on this step
 }
+
+TEST_CASE("a motion that overflows is undefined at level 4, never NaN", "[gait]") {
+  // A DS with 1e-3 rad of α range (found by a projection onto levels 0–4): its polynomials'
+  // slopes reach 1e18 and the DS force split overflows. With the DS range margin switched off
+  // the evaluator must still report no NaN.
+  GaitParameters p;
+  p << -0.019252834250073153, -2.5942644747345804, 1.5208076184025092, 0.34995961135393439,
+      -0.02025482964101576, -2.4946304373232517, 1.5208063294147436, -2.4455184279386502,
+      1.5207864380756257, -1.4437546173990962e-06, 0.059999795817441332, -1.1250027541370575,
+      0.29945717215519196, 0.30018556938440627, 0.30024228850281709, 0.29982065456277085,
+      0.11999763446337594;
+  GaitOptions no_margin;
+  no_margin.ds_alpha_range_min = 0.0;
+  const GaitEvaluator ev = test::defaultGaitEvaluator(no_margin);
+  const GaitEvaluation<double> e = ev.evaluate(p);
+  CHECK(e.numerically_undefined);
+  CHECK(e.failed_level == 4);
+  CHECK_FALSE(e.defined());
+  CHECK_FALSE(e.motion_computed);
+  for (std::size_t k = 0; k < e.g.size(); ++k) CHECK(std::isfinite(e.g[k]));
+  CHECK(std::isfinite(e.C_Gamma));
+  // With the default margin the same step fails the DS range condition (level 1) instead.
+  CHECK(test::defaultGaitEvaluator().evaluate(p).failed_level == 1);
+}

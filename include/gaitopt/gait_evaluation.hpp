@@ -39,6 +39,7 @@ template <class S> struct GaitEvaluation {
   std::vector<ConstraintState> state;
   int failed_level = -1;         // lowest level with a violated constraint; −1: none
   bool motion_computed = false;  // criteria and level-5 values exist (possibly extended)
+  bool numerically_undefined = false;  // the motion overflowed; reported as failed at level 4
   S C_Gamma = S(0.0), C_E = S(0.0), W = S(0.0), C_frott = S(0.0);
   S T_SS = S(0.0), T_DS = S(0.0), step_length = S(0.0), speed = S(0.0), alphadot_fSS = S(0.0);
   GaitMotion<S> motion;

@@ -105,7 +105,7 @@ template <class S> bool boundaryStage(EvalContext<S>& c) {
   setReach(c, kReachMaxInt, r_int, D);
 
   const double am = c.options.angle_margin;
-  c.set(kAlphaOrderDS, 0, p(kAlphaFDS) - p(kAlphaIDS) + am, D);  // (3.38)
+  c.set(kAlphaOrderDS, 0, p(kAlphaFDS) - p(kAlphaIDS) + c.options.ds_alpha_range_min, D);  // (3.38)
   c.set(kAlphaOrderSS, 0, mo.alpha_fSS - p(kAlphaFDS) + am, D);
   c.set(kTibiaFront, 0, p(kAlphaIDS) - 0.5 * M_PI + am, D);  // (3.40)
   c.set(kTibiaRear, 0, -0.5 * M_PI - mo.alpha_fSS + am, D);
@@ -421,9 +421,11 @@ std::array<S, 4> integrateEach(const ChebyshevGrid& grid,
 // Time in [lo, hi] where switching function i changes sign: Illinois-modified regula falsi.
 template <class F> double switchTime(const F& fn, double lo, double f_lo, double hi, double f_hi) {
   int side = 0;
-  for (int it = 0; it < 60 && hi - lo > 1e-12; ++it) {
-    const double t = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+  for (int it = 0; it < 80 && hi - lo > 1e-12; ++it) {
+    double t = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);  // secant unusable (huge or equal values)
     const double ft = fn(t);
+    if (!std::isfinite(ft)) return 0.5 * (lo + hi);
     if (ft == 0.0) return t;
     if ((ft < 0.0) == (f_lo < 0.0)) {
       lo = t;
@@ -465,7 +467,8 @@ DsPieces dsPieces(EvalContext<S>& c, const Eigen::Matrix<S, Eigen::Dynamic, 1>& 
   for (const auto& [t, i] : found) {
     pieces.switch_times.push_back(t);
     pieces.switch_function.push_back(i);
-    pieces.switch_rate.push_back((phi(t + h, i) - phi(t - h, i)) / (2.0 * h));
+    const double rate = (phi(t + h, i) - phi(t - h, i)) / (2.0 * h);
+    pieces.switch_rate.push_back(std::isfinite(rate) ? rate : 0.0);
   }
   const double T = valueOf(c.out.motion.T_DS);
   for (std::size_t i = 0; i <= found.size(); ++i) {
@@ -480,6 +483,7 @@ DsPieces dsPieces(EvalContext<S>& c, const Eigen::Matrix<S, Eigen::Dynamic, 1>& 
 // theorem, as (3.146)): one Newton step from the located root, on the AD scalar.
 template <class S> S switchTimeWithDerivative(EvalContext<S>& c, const DsPieces& pieces, int j) {
   const double t = pieces.switch_times[j];
+  if (pieces.switch_rate[j] == 0.0) return S(t);  // no usable rate: the switch stays put
   const S phi = dsSample(c.model, c.options, c.out.motion, S(t), pieces.branches[j])
                     .switching[pieces.switch_function[j]];
   return S(t) - phi / pieces.switch_rate[j];
@@ -562,6 +566,32 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
   c.out.motion_computed = true;
 }
 
+template <class S> bool allFinite(const GaitEvaluation<S>& out) {
+  for (std::size_t k = 0; k < out.g.size(); ++k)
+    if (out.state[k] != ConstraintState::NotComputed && !std::isfinite(valueOf(out.g[k])))
+      return false;
+  for (const S* x : {&out.C_Gamma, &out.C_E, &out.W, &out.C_frott, &out.T_SS, &out.speed})
+    if (!std::isfinite(valueOf(*x))) return false;
+  return true;
+}
+
+// A motion whose numbers overflow (a degenerate phase, e.g. a DS with almost no α range) is
+// reported as undefined at level 4, the level of the DS existence, never as NaN.
+template <class S> void discardNonFiniteMotion(EvalContext<S>& c) {
+  GaitEvaluation<S>& out = c.out;
+  for (std::size_t k = 0; k < out.g.size(); ++k)
+    if (c.layout.levelOf(static_cast<int>(k)) >= 4 || !std::isfinite(valueOf(out.g[k]))) {
+      out.g[k] = S(0.0);
+      out.state[k] = ConstraintState::NotComputed;
+    }
+  out.C_Gamma = out.C_E = out.W = out.C_frott = S(0.0);
+  if (!std::isfinite(valueOf(out.T_SS)) || !std::isfinite(valueOf(out.speed)))
+    out.T_SS = out.speed = out.alphadot_fSS = S(0.0);
+  out.motion_computed = false;
+  out.numerically_undefined = true;
+  out.failed_level = 4;
+}
+
 template <class S>
 void evaluateGaitImpl(const Model& model, const GaitOptions& options,
                       const ConstraintLayout& layout, const GaitGrids& grids,
@@ -587,6 +617,7 @@ void evaluateGaitImpl(const Model& model, const GaitOptions& options,
     if (dsReachStage(c)) motionStage(c, pts);
   }
   out.failed_level = c.lowestViolated(5);
+  if (!allFinite(out)) discardNonFiniteMotion(c);
 }
 
 }  // namespace gaitopt::detail

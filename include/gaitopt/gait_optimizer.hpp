@@ -28,7 +28,7 @@ struct SolverSettings {
   int print_every = 1;
   // Exchange method for the grid constraints (only near-active entries in each NLP, re-checked
   // on the full grid after each solve); false: every grid entry in one NLP.
-  bool constraint_exchange = true;
+  bool constraint_exchange = false;  // measured: SLSQP stalls with it, Ipopt gains (README)
   GradientMode gradients = GradientMode::Exact;
   int max_restarts = 3;  // of the full stage, from the last point, when it ends unmet
 };

@@ -24,6 +24,9 @@ struct GaitOptions {
   double alphadot_margin = 0.05;      // ε of (3.56) [rad/s]
   double ds_alphadot_max = -0.01;     // DS monotonicity α̇ ≤ this (3.43) [rad/s]
   double angle_margin = 1e-3;         // α orderings (3.38), (3.40) [rad]
+  // Minimum DS range α_iDS − α_fDS [rad] of (3.38): the DS polynomials δ(α) are fitted over
+  // this range, and a vanishing one makes their slopes (and the torques) overflow.
+  double ds_alpha_range_min = 0.02;
   double reach_margin = 1e-4;         // hip–foot distance² away from 0 and (l4+l5)² [m²]
   double kappa_min = 0.1;             // leg-exchange factor κ (gap #9)
   double joint_limit_margin = 0.0;    // on (3.39), (3.42) [rad]

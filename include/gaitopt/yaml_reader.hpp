@@ -50,6 +50,12 @@ class YamlMap {
   std::optional<double> optionalNumber(const std::string& key) const;
   std::optional<YamlMap> optionalMap(const std::string& key) const;
 
+  // Every entry of this mapping as (key, scalar text), in file order, for pass-through maps
+  // whose keys are checked by someone else (e.g. Ipopt options); marks every key as read.
+  // Quoted and plain scalars alike give their text; a sequence, mapping or null value is a
+  // ConfigError at its key.
+  std::vector<std::pair<std::string, std::string>> scalarEntries() const;
+
   // Throws for the first key of this mapping, or of any mapping obtained from it through
   // map()/optionalMap(), that was never asked for: catches misspelt keys, which would
   // otherwise silently fall back to defaults.

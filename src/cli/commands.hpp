@@ -10,5 +10,7 @@ constexpr int kExitUndefined = 3;
 
 void registerModelCommand(CLI::App& app, int& exit_code);
 void registerEvaluateCommand(CLI::App& app, int& exit_code);
+void registerOptimizeCommand(CLI::App& app, int& exit_code);
+void registerSweepCommands(CLI::App& app, int& exit_code);  // sweep, sweep-merge
 
 }  // namespace gaitopt::cli

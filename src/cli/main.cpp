@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
   int exit_code = 0;
   gaitopt::cli::registerModelCommand(app, exit_code);
   gaitopt::cli::registerEvaluateCommand(app, exit_code);
+  gaitopt::cli::registerOptimizeCommand(app, exit_code);
+  gaitopt::cli::registerSweepCommands(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
