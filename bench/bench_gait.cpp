@@ -45,7 +45,7 @@ constexpr double kGradientTargetNs = 2e6;    // 2 ms
 
 // The defined step of tests/test_gait_support.hpp (levels 0–4 hold), kGaitParameterNames order.
 GaitParameters definedStep() {
-  GaitParameters p;
+  GaitParameters p(kNumGaitParameters);
   p << -0.044819, -2.593492, 1.520796, 0.35, -0.190837, -2.495513, 1.520796, -2.445513,
       1.520796, 0.0, 0.06, -0.9, 0.3, 0.3, 0.3, 0.3, 0.12;
   return p;
@@ -54,7 +54,7 @@ GaitParameters definedStep() {
 // The 17 parameters from a mapping that names all of them (plain numbers), or nothing.
 std::optional<GaitParameters> parametersIn(const YAML::Node& map) {
   if (!map.IsMap()) return std::nullopt;
-  GaitParameters p;
+  GaitParameters p(kNumGaitParameters);
   for (int i = 0; i < kNumGaitParameters; ++i) {
     const YAML::Node v = map[kGaitParameterNames[i]];
     if (!v || !v.IsScalar()) return std::nullopt;

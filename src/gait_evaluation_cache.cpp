@@ -31,8 +31,11 @@ GaitGradient GaitEvaluationCache::finiteDifferenceGradient(const GaitParameters&
   GaitGradient r;
   r.value = evaluator_.evaluate(p);
   const int m = evaluator_.layout().size();
-  r.dg.setZero(m, kNumGaitParameters);
-  for (int i = 0; i < kNumGaitParameters; ++i) {
+  const int n = static_cast<int>(p.size());
+  r.dg.setZero(m, n);
+  for (GaitParameters* g : {&r.dC_Gamma, &r.dC_E, &r.dW, &r.dC_frott, &r.dT_SS, &r.dT_DS, &r.dspeed})
+    g->setZero(n);
+  for (int i = 0; i < n; ++i) {
     const double h = 1e-6 * std::max(1.0, std::abs(p(i)));
     GaitParameters pp = p, pm = p;
     pp(i) += h;

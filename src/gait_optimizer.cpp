@@ -80,7 +80,7 @@ NlpSolution solveStage(GaitEvaluationCache& cache, const GaitParameters& start, 
   NlpSolution sol;
   sol.x = start;
   for (int round = 0; round < kMaxExchangeRounds; ++round) {
-    NlpProblem problem(gaitVariables(ev.model(), sol.x));
+    NlpProblem problem(gaitVariables(ev.model(), sol.x, ev.options().parameterisation));
     build(problem);
     problem.addConstraints(makeHierarchyConstraints(cache, entries, interior));
     const std::string name = label + " (" + std::to_string(entries.size()) + " grid entries)";
@@ -102,7 +102,7 @@ GaitParameters project(GaitEvaluationCache& cache, const GaitParameters& start, 
   SolverSettings projection = s;
   projection.backend = Backend::Ipopt;
   return solveStage(cache, start, max_level, kProjectionInterior, projection, label, log, result,
-                    [&](NlpProblem& problem) { problem.addCost(makeDistanceCost(start)); })
+                    [&](NlpProblem& problem) { problem.addCost(makeDistanceCost(start, cache.evaluator().options().parameterisation)); })
       .x;
 }
 
@@ -155,7 +155,7 @@ OptimizationResult optimizeGait(const GaitEvaluator& ev, const OptimizationReque
   const auto t0 = std::chrono::steady_clock::now();
   OptimizationResult r;
   GaitEvaluationCache cache(ev, req.solver.gradients);
-  GaitParameters p = gaitVariables(ev.model(), req.initial).initial;
+  GaitParameters p = gaitVariables(ev.model(), req.initial, ev.options().parameterisation).initial;
   if (req.solver.hierarchy == HierarchyStrategy::Staged) {
     // Project onto levels 0–1, then 0–4, as long as the evaluator finds a failed level below 5
     // (a projection that stalls is restarted from its own point).

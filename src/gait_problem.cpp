@@ -7,7 +7,7 @@ namespace {
 
 constexpr double kInf = 1e20;
 
-GaitParameters toParameters(const VectorX& x) { return x; }
+GaitParameters toParameters(const VectorX& x) { return GaitParameters(x); }
 
 bool motionAvailable(const GaitEvaluation<double>& e) { return e.motion_computed; }
 
@@ -41,8 +41,8 @@ class CriterionCost : public CostTerm {
 
 class DistanceCost : public CostTerm {
  public:
-  explicit DistanceCost(const GaitParameters& ref)
-      : ref_(ref), w_(parameterScales().cwiseInverse().cwiseAbs2()) {}
+  DistanceCost(const GaitParameters& ref, const Parameterisation& par)
+      : ref_(ref), w_(parameterScales(par).cwiseInverse().cwiseAbs2()) {}
   std::string name() const override { return "distance"; }
   bool value(const VectorX& x, double& f) override {
     f = (x - ref_).cwiseAbs2().dot(w_);  // (3.78) in the scaled norm
@@ -158,24 +158,26 @@ const char* criterionName(Criterion c) {
   return c == Criterion::Torque ? "C_Gamma" : c == Criterion::Energy ? "C_E" : "W";
 }
 
-GaitParameters parameterScales() {
-  GaitParameters s;
+GaitParameters parameterScales(const Parameterisation& par) {
+  GaitParameters s(kNumGaitParameters);
   // α, δ1, θ3, d, α, δ1, θ3, δ1, θ3, x2r, z2, α̇, δ1*, δ2*, δ1*, δ2*, T_DS
   s << 0.1, 0.1, 0.1, 0.05, 0.1, 0.1, 0.1, 0.1, 0.1, 0.05, 0.02, 0.2, 0.5, 0.5, 0.5, 0.5, 0.05;
-  return s;
+  return extendPerParameter(s, par, 0.1, 0.1);
 }
 
-VariableSet gaitVariables(const Model& m, const GaitParameters& initial) {
+VariableSet gaitVariables(const Model& m, const GaitParameters& initial,
+                          const Parameterisation& par) {
   const JointLimits& jl = m.robot.limits;
   const double up = 0.5 * M_PI;
-  VariableSet v;
-  v.names.assign(kGaitParameterNames.begin(), kGaitParameterNames.end());
-  v.lower.resize(kNumGaitParameters);
-  v.upper.resize(kNumGaitParameters);
-  v.lower << -1.2, jl.knee_min, up - 1.0, 0.05, -1.2, jl.knee_min, up - 1.0, jl.knee_min, up - 1.0,
+  GaitParameters lo(kNumGaitParameters), hi(kNumGaitParameters);
+  lo << -1.2, jl.knee_min, up - 1.0, 0.05, -1.2, jl.knee_min, up - 1.0, jl.knee_min, up - 1.0,
       -0.8, 0.0, -10.0, -10.0, -10.0, -10.0, -10.0, 0.01;
-  v.upper << 1.2, jl.knee_max, up + 1.0, 1.0, 1.2, jl.knee_max, up + 1.0, jl.knee_max, up + 1.0,
-      0.8, 0.5, -0.01, 10.0, 10.0, 10.0, 10.0, 1.0;
+  hi << 1.2, jl.knee_max, up + 1.0, 1.0, 1.2, jl.knee_max, up + 1.0, jl.knee_max, up + 1.0, 0.8,
+      0.5, -0.01, 10.0, 10.0, 10.0, 10.0, 1.0;
+  VariableSet v;
+  v.names = par.names();
+  v.lower = extendPerParameter(lo, par, jl.knee_min, up - 1.0);
+  v.upper = extendPerParameter(hi, par, jl.knee_max, up + 1.0);
   v.initial = initial.cwiseMax(v.lower).cwiseMin(v.upper);
   return v;
 }
@@ -185,8 +187,9 @@ std::unique_ptr<CostTerm> makeCriterionCost(GaitEvaluationCache& cache, Criterio
   return std::make_unique<CriterionCost>(cache, criterion, scale);
 }
 
-std::unique_ptr<CostTerm> makeDistanceCost(const GaitParameters& reference) {
-  return std::make_unique<DistanceCost>(reference);
+std::unique_ptr<CostTerm> makeDistanceCost(const GaitParameters& reference,
+                                           const Parameterisation& par) {
+  return std::make_unique<DistanceCost>(reference, par);
 }
 
 double constraintScale(const ConstraintLayout& layout, const Model& m, int entry) {

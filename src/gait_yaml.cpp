@@ -106,7 +106,7 @@ std::string yamlString(const std::string& s) {
 }  // namespace
 
 GaitParameters parseGaitParameters(const YamlMap& m) {
-  GaitParameters p;
+  GaitParameters p(kNumGaitParameters);
   for (int i = 0; i < kNumGaitParameters; ++i) p(i) = m.number(kGaitParameterNames[i]);
   // Implicit requirements of the parametrisation (digest §3.5 [G]): a forward step and a
   // double support of positive duration (the DS α(t) cubic is singular at T_DS = 0).

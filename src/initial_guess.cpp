@@ -30,7 +30,7 @@ GaitParameters defaultInitialGuess(const Model& m, std::optional<double> speed) 
   const double trunk = 0.5 * M_PI - 0.05;
   // Stance tibia rate ≈ −v / leg length, at least 0.4 rad/s to pass over the stance foot.
   const double alphadot = -std::max(0.4, speed.value_or(0.5) * 1.8 / leg);
-  GaitParameters p;
+  GaitParameters p(kNumGaitParameters);
   p << start.alpha, start.knee, trunk, d, end.alpha, end.knee, trunk, end.knee + 0.05, trunk,
       0.0, 0.075 * leg, alphadot, 0.3, 0.3, 0.3, 0.3, 0.12;
   return p;

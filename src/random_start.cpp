@@ -19,7 +19,7 @@ double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x
 }  // namespace
 
 GaitParameters randomStartHalfWidths() {
-  GaitParameters h;
+  GaitParameters h(kNumGaitParameters);
   // α, δ1, θ3, d, α, δ1, θ3, δ1, θ3, x2r, z2, α̇, δ1*, δ2*, δ1*, δ2*, T_DS
   h << 0.15, 0.15, 0.1, 0.05, 0.15, 0.15, 0.1, 0.15, 0.1, 0.05, 0.02, 0.3, 0.5, 0.5, 0.5, 0.5,
       0.05;
@@ -41,7 +41,7 @@ RandomStartBox randomStartBox(const GaitParameters& centre) {
 
 GaitParameters randomStart(const GaitParameters& centre, std::mt19937_64& rng) {
   const RandomStartBox box = randomStartBox(centre);
-  GaitParameters p;
+  GaitParameters p(kNumGaitParameters);
   for (int i = 0; i < kNumGaitParameters; ++i) {
     p(i) = box.lower(i) + unit(rng) * (box.upper(i) - box.lower(i));
   }

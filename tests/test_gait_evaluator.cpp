@@ -529,7 +529,7 @@ TEST_CASE("a motion that overflows is undefined at level 4, never NaN", "[gait]"
   // A DS with 1e-3 rad of α range (found by a projection onto levels 0–4): its polynomials'
   // slopes reach 1e18 and the DS force split overflows. With the DS range margin switched off
   // the evaluator must still report no NaN.
-  GaitParameters p;
+  GaitParameters p(kNumGaitParameters);
   p << -0.019252834250073153, -2.5942644747345804, 1.5208076184025092, 0.34995961135393439,
       -0.02025482964101576, -2.4946304373232517, 1.5208063294147436, -2.4455184279386502,
       1.5207864380756257, -1.4437546173990962e-06, 0.059999795817441332, -1.1250027541370575,

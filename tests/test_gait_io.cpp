@@ -208,7 +208,7 @@ TEST_CASE("the shipped example gait file loads and defines a step", "[gait_io]")
 }
 
 TEST_CASE("gaitYaml round-trips parameters and options bit for bit", "[gait_io]") {
-  GaitParameters p;
+  GaitParameters p(gaitopt::kNumGaitParameters);
   for (int i = 0; i < gaitopt::kNumGaitParameters; ++i) p(i) = kExampleValues[i];
   p(gaitopt::kStepLength) = 0.1 + 0.2;  // not the shortest decimal of itself
   p(gaitopt::kAlphaIDS) = -1.0 / 3.0;

@@ -13,7 +13,7 @@ namespace gaitopt::test {
 // delta1_fDS, theta3_fDS, delta1_int, theta3_int, x2r_int, z2_int, alphadot_iSS, delta1s_iSS,
 // delta2s_iSS, delta1s_fSS, delta2s_fSS, T_DS.
 inline GaitParameters definedStep() {
-  GaitParameters p;
+  GaitParameters p(kNumGaitParameters);
   p << -0.044819, -2.593492, 1.520796, 0.35, -0.190837, -2.495513, 1.520796, -2.445513,
       1.520796, 0.0, 0.06, -0.9, 0.3, 0.3, 0.3, 0.3, 0.12;
   return p;
@@ -22,7 +22,7 @@ inline GaitParameters definedStep() {
 // The C_Gamma-optimal step of the default robot at 0.5 m/s (gaitopt optimize, nlopt_slsqp,
 // C_Gamma = 9122.63 N²·m·s): every constraint holds.
 inline GaitParameters optimalStep() {
-  GaitParameters p;
+  GaitParameters p(kNumGaitParameters);
   p << 0.0192773503, -2.65033763, 1.38578892, 0.30881926, -0.0335627699, -2.6061693, 1.37072667,
       -2.56752143, 1.37135822, 0.0589803378, 0.0297501461, -1.02042521, -0.399879997,
       0.157357809, 0.602535363, 1.13725619, 0.037402875;

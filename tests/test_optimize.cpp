@@ -432,8 +432,9 @@ TEST_CASE("optimize: no feasible nearby point on the speed manifold is much bett
   const GaitEvaluator& ev = run.evaluator;
   const GaitParameters best = run.result.parameters;
   const double c_best = run.result.evaluation.C_Gamma;
-  const gaitopt::VariableSet box = gaitopt::gaitVariables(ev.model(), best);
-  const GaitParameters scales = gaitopt::parameterScales();
+  const gaitopt::VariableSet box =
+      gaitopt::gaitVariables(ev.model(), best, ev.options().parameterisation);
+  const GaitParameters scales = gaitopt::parameterScales(ev.options().parameterisation);
 
   const auto onSpeed = [&](GaitParameters p) -> std::optional<GaitParameters> {
     for (int iteration = 0; iteration < 10; ++iteration) {

@@ -14,8 +14,9 @@ namespace gaitopt {
 
 template <class S> struct GaitMotion {
   S d = S(0.0), T_DS = S(0.0), T_SS = S(0.0);
-  Vector5<S> q_iDS, q_fDS, q_int, q_iSS, q_fSS;
-  S alpha_iSS = S(0.0), alpha_int = S(0.0), alpha_fSS = S(0.0);
+  Vector5<S> q_iDS, q_fDS, q_iSS, q_fSS;
+  S alpha_iSS = S(0.0), alpha_fSS = S(0.0);
+  std::vector<Vector5<S>> q_ss_points;  // interior SS configurations (α_int for the thesis)
   std::array<LocalPolynomial<S>, 4> ss_path;  // δ1..δ4 as functions of α (3.2)
   LocalPolynomial<S> ds_delta1, ds_delta2;    // δ1, δ2 as functions of α (3.3)
   LocalPolynomial<S> ds_alpha;                // α as a function of t (3.4)

@@ -24,7 +24,7 @@ struct GaitGrids {
 // Values of one evaluation with first derivatives with respect to the parameters.
 struct GaitGradient {
   GaitEvaluation<double> value;
-  Eigen::Matrix<double, Eigen::Dynamic, kNumGaitParameters> dg;  // rows: constraints
+  Eigen::MatrixXd dg;  // rows: constraints, columns: parameters
   GaitParameters dC_Gamma, dC_E, dW, dC_frott, dT_SS, dT_DS, dspeed;
 };
 
@@ -32,8 +32,10 @@ class GaitEvaluator {
  public:
   GaitEvaluator(const RobotParams& robot, const GaitOptions& options,
                 const ModelOptions& model_options = {});
+  // p must have options().parameterisation.size() entries (std::invalid_argument otherwise).
   GaitEvaluation<double> evaluate(const GaitParameters& p) const;
   GaitGradient evaluateWithGradient(const GaitParameters& p) const;
+  int numParameters() const { return options_.parameterisation.size(); }
 
   const Model& model() const { return model_; }
   const GaitOptions& options() const { return options_; }
@@ -46,6 +48,9 @@ class GaitEvaluator {
   GaitOptions options_;
   ConstraintLayout layout_;
   GaitGrids grids_;
+
+  template <class AD> GaitGradient gradientWith(const GaitParameters& p) const;
+  void checkSize(const GaitParameters& p) const;
 };
 
 }  // namespace gaitopt

@@ -62,11 +62,17 @@ Vector2<S> rearFootFromHip(const Model& m, const S& alpha, const S& delta1, cons
 }
 
 template <class S>
-void setReach(EvalContext<S>& c, int max_group, const Vector2<S>& r, ConstraintState st) {
+void setReachAt(EvalContext<S>& c, int max_group, int index, const Vector2<S>& r,
+                ConstraintState st) {
   const double L = c.model.robot.l4 + c.model.robot.l5;
   const S rho2 = r.squaredNorm();
-  c.set(max_group, 0, rho2 - L * L + c.options.reach_margin, st);   // (3.36), (3.37)
-  c.set(max_group + 1, 0, c.options.reach_margin - rho2, st);
+  c.set(max_group, index, rho2 - L * L + c.options.reach_margin, st);  // (3.36), (3.37)
+  c.set(max_group + 1, index, c.options.reach_margin - rho2, st);
+}
+
+template <class S>
+void setReach(EvalContext<S>& c, int max_group, const Vector2<S>& r, ConstraintState st) {
+  setReachAt(c, max_group, 0, r, st);
 }
 
 template <class S>
@@ -99,11 +105,17 @@ template <class S> bool boundaryStage(EvalContext<S>& c) {
     mo.alpha_fSS = atan2(r_iDS(0), -r_iDS(1));
   }
   mo.alpha_iSS = p(kAlphaFDS);  // (3.21)
-  mo.alpha_int = 0.5 * (mo.alpha_iSS + mo.alpha_fSS);
-  const Vector2<S> f1_int = foot1FromHip(m, mo.alpha_int, p(kDelta1Int));
-  const Vector2<S> r_int(p(kX2rInt), f1_int(1) + p(kZ2Int));  // (3.19)
-  setReach(c, kReachMaxInt, r_int, D);
-
+  const Parameterisation& par = c.options.parameterisation;
+  std::vector<Vector2<S>> r_points(par.ss_points);
+  mo.q_ss_points.assign(par.ss_points, Vector5<S>(Vector5<S>::Zero()));
+  for (int k = 0; k < par.ss_points; ++k) {
+    const int i = par.ssPointIndex(k);
+    const S alpha = mo.alpha_iSS + par.ssFraction(k) * (mo.alpha_fSS - mo.alpha_iSS);
+    const Vector2<S> f1 = foot1FromHip(m, alpha, p(i));
+    r_points[k] = Vector2<S>(p(i + 2), f1(1) + p(i + 3));  // (3.19)
+    mo.q_ss_points[k](0) = alpha;
+    setReachAt(c, kReachMaxInt, k, r_points[k], D);
+  }
   const double am = c.options.angle_margin;
   c.set(kAlphaOrderDS, 0, p(kAlphaFDS) - p(kAlphaIDS) + c.options.ds_alpha_range_min, D);  // (3.38)
   c.set(kAlphaOrderSS, 0, mo.alpha_fSS - p(kAlphaFDS) + am, D);
@@ -113,10 +125,10 @@ template <class S> bool boundaryStage(EvalContext<S>& c) {
 
   mo.q_fDS = dsConfiguration(m, p(kAlphaFDS), p(kDelta1FDS), p(kTheta3FDS), r_fDS);
   mo.q_iSS = mo.q_fDS;
-  const Vector2<S> leg2_int = leg2InverseKinematics(m, mo.alpha_int, p(kDelta1Int), r_int);
-  mo.q_int = Vector5<S>(mo.alpha_int, p(kDelta1Int),
-                        delta2FromTheta3(mo.alpha_int, p(kDelta1Int), p(kTheta3Int)), leg2_int(0),
-                        leg2_int(1));
+  for (int k = 0; k < par.ss_points; ++k) {
+    const int i = par.ssPointIndex(k);
+    mo.q_ss_points[k] = dsConfiguration(m, S(mo.q_ss_points[k](0)), p(i), p(i + 1), r_points[k]);
+  }
   return true;
 }
 
@@ -140,11 +152,14 @@ template <class S> void buildSsPaths(EvalContext<S>& c, Vector5<S>& qs_iSS, Vect
   GaitMotion<S>& mo = c.out.motion;
   qs_iSS = liftOffSlopes(c.model, mo.q_iSS, p(kDelta1sISS), p(kDelta2sISS));
   qs_fSS = liftOffSlopes(c.model, mo.q_fSS, p(kDelta1sFSS), p(kDelta2sFSS));
-  for (int j = 0; j < 4; ++j)  // (3.25)
-    mo.ss_path[j] = polynomialThrough(mo.alpha_iSS, mo.q_iSS(j + 1), qs_iSS(j + 1),
-                                      std::vector<S>{mo.alpha_int},
-                                      std::vector<S>{S(mo.q_int(j + 1))}, mo.alpha_fSS,
-                                      mo.q_fSS(j + 1), qs_fSS(j + 1));
+  std::vector<S> alphas;
+  for (const Vector5<S>& q : mo.q_ss_points) alphas.push_back(q(0));
+  for (int j = 0; j < 4; ++j) {  // (3.25), or higher degree with more interior points
+    std::vector<S> values;
+    for (const Vector5<S>& q : mo.q_ss_points) values.push_back(q(j + 1));
+    mo.ss_path[j] = polynomialThrough(mo.alpha_iSS, mo.q_iSS(j + 1), qs_iSS(j + 1), alphas, values,
+                                      mo.alpha_fSS, mo.q_fSS(j + 1), qs_fSS(j + 1));
+  }
 }
 
 // Model terms along the SS path at one α, independent of the time law:
@@ -249,10 +264,18 @@ template <class S> void dsBoundaryStage(EvalContext<S>& c, const Vector5<S>& qs_
   const S kappa = valueOf(mo.kappa) > c.options.kappa_min ? mo.kappa : S(c.options.kappa_min);
   const S alphadot_iDS = kappa * mo.alphadot_fSS;
   const S d1s_iDS = qs_fSS(4) / kappa, d2s_iDS = (qs_fSS(2) + qs_fSS(3)) / kappa;
-  mo.ds_delta1 = cubicHermite(p(kAlphaIDS), p(kDelta1IDS), d1s_iDS, p(kAlphaFDS), p(kDelta1FDS),
-                              qs_iSS(1));  // (3.26)
-  mo.ds_delta2 = cubicHermite(p(kAlphaIDS), mo.q_iDS(2), d2s_iDS, p(kAlphaFDS), mo.q_fDS(2),
-                              qs_iSS(2));
+  const Parameterisation& par = c.options.parameterisation;
+  std::vector<S> alphas, d1, d2;
+  for (int k = 0; k < par.ds_points; ++k) {
+    const int i = par.dsPointIndex(k);
+    alphas.push_back(p(kAlphaIDS) + par.dsFraction(k) * (p(kAlphaFDS) - p(kAlphaIDS)));
+    d1.push_back(p(i));
+    d2.push_back(delta2FromTheta3(alphas.back(), p(i), p(i + 1)));
+  }
+  mo.ds_delta1 = polynomialThrough(p(kAlphaIDS), p(kDelta1IDS), d1s_iDS, alphas, d1, p(kAlphaFDS),
+                                   p(kDelta1FDS), S(qs_iSS(1)));  // (3.26)
+  mo.ds_delta2 = polynomialThrough(p(kAlphaIDS), S(mo.q_iDS(2)), d2s_iDS, alphas, d2,
+                                   p(kAlphaFDS), S(mo.q_fDS(2)), S(qs_iSS(2)));
   mo.ds_alpha = cubicHermite(S(0.0), p(kAlphaIDS), alphadot_iDS, p(kTDS), p(kAlphaFDS),
                              mo.alphadot_iSS);  // (3.27)
 }

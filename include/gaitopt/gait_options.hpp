@@ -1,4 +1,5 @@
 #pragma once
+#include "gaitopt/gait_parameters.hpp"
 // Options of a gait evaluation: the choices the thesis leaves open (digest §6), each with a
 // documented default.
 namespace gaitopt {
@@ -9,6 +10,7 @@ enum class DsDistribution {
 };
 
 struct GaitOptions {
+  Parameterisation parameterisation;  // thesis: 17 parameters
   double friction_coefficient = 0.8;  // ground f (gap #1: Ch. 2 calls 1 a rarely exceeded value)
   double clearance_height = 0.03;     // z_max of the clearance parabola (3.49) [m] (gap #2)
   double min_normal_force = 20.0;     // R_iz ≥ 20 N, Fig. 3.11 caption (gap #3)

@@ -16,15 +16,17 @@ double criterionValue(const GaitEvaluation<double>& e, Criterion c);
 
 // Box bounds that keep the parameters in the physically meaningful range (documented in the
 // README): knees within the joint limits, trunk within 1 rad of upright, 0.05 ≤ d ≤ 1 m, ...
-VariableSet gaitVariables(const Model& model, const GaitParameters& initial);
+VariableSet gaitVariables(const Model& model, const GaitParameters& initial,
+                          const Parameterisation& parameterisation);
 
 // Typical magnitude of one parameter, used to weigh distances in parameter space (§3.4.2 leaves
 // the norm open: parameters mix rad, m, rad/s and s).
-GaitParameters parameterScales();
+GaitParameters parameterScales(const Parameterisation& parameterisation);
 
 std::unique_ptr<CostTerm> makeCriterionCost(GaitEvaluationCache& cache, Criterion criterion,
                                             double scale);
-std::unique_ptr<CostTerm> makeDistanceCost(const GaitParameters& reference);
+std::unique_ptr<CostTerm> makeDistanceCost(const GaitParameters& reference,
+                                           const Parameterisation& parameterisation);
 // Typical magnitude of a constraint group's values (the optimiser sees g / scale, O(1)).
 double constraintGroupScale(int group, const Model& model);
 double constraintScale(const ConstraintLayout& layout, const Model& model, int entry);

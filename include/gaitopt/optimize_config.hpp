@@ -46,7 +46,7 @@ struct OptimizeConfig {
   // Gait file of the starting point, resolved relative to the config file's directory; empty
   // for `initial_guess: default` (defaultInitialGuess of the robot at `speed`).
   std::optional<std::string> initial_guess_path;
-  GaitParameters initial_guess_parameters = GaitParameters::Zero();  // filled for a gait file
+  GaitParameters initial_guess_parameters;  // filled for a gait file
   SolverSettings solver;  // defaults of SolverSettings for every absent key
 };
 
