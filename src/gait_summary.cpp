@@ -112,7 +112,8 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
   numberOrNull(w, timing && o.target_speed > 0.0, e.speed - o.target_speed);
 
   w.key("parameters").beginObject();
-  for (int i = 0; i < kNumGaitParameters; ++i) w.key(kGaitParameterNames[i]).value(p(i));
+  const std::vector<std::string> names = ev.options().parameterisation.names();
+  for (int i = 0; i < static_cast<int>(names.size()); ++i) w.key(names[i]).value(p(i));
   w.endObject();
 
   w.key("constraints").beginArray();

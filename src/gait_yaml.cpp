@@ -105,13 +105,45 @@ std::string yamlString(const std::string& s) {
 
 }  // namespace
 
-GaitParameters parseGaitParameters(const YamlMap& m) {
-  GaitParameters p(kNumGaitParameters);
-  for (int i = 0; i < kNumGaitParameters; ++i) p(i) = m.number(kGaitParameterNames[i]);
+Parameterisation parseParameterisation(const YamlMap& doc) {
+  Parameterisation par;
+  if (!doc.has("parameterisation")) return par;
+  if (!doc.hasMapping("parameterisation")) {
+    const std::string v = doc.string("parameterisation");
+    if (v != "miossec")
+      throw doc.error("parameterisation", "expected 'miossec' or a mapping {ss_points, "
+                                          "ds_points}, got '" + v + "'");
+    return par;
+  }
+  const YamlMap m = doc.map("parameterisation");
+  const auto count = [&m](const char* key, int fallback) {
+    const std::optional<double> v = m.optionalNumber(key);
+    if (!v) return fallback;
+    if (*v != std::floor(*v) || *v < 0 || *v > kMaxGaitParameters)
+      throw m.error(key, "must be a whole number from 0 to " + std::to_string(kMaxGaitParameters) +
+                             ", got " + show(*v));
+    return static_cast<int>(*v);
+  };
+  par.ss_points = count("ss_points", 1);
+  par.ds_points = count("ds_points", 0);
+  m.rejectUnknownKeys();
+  if (par.ss_points % 2 == 0)
+    throw m.error("ss_points", "must be odd (the middle point is the thesis' alpha_int), got " +
+                                   std::to_string(par.ss_points));
+  if (par.size() > kMaxGaitParameters)
+    throw m.error("ss_points", "gives " + std::to_string(par.size()) + " parameters, more than " +
+                                   std::to_string(kMaxGaitParameters));
+  return par;
+}
+
+GaitParameters parseGaitParameters(const YamlMap& m, const Parameterisation& par) {
+  const std::vector<std::string> names = par.names();
+  GaitParameters p(par.size());
+  for (int i = 0; i < par.size(); ++i) p(i) = m.number(names[i]);
   // Implicit requirements of the parametrisation (digest §3.5 [G]): a forward step and a
   // double support of positive duration (the DS α(t) cubic is singular at T_DS = 0).
   for (int i : {static_cast<int>(kStepLength), static_cast<int>(kTDS)}) {
-    if (!(p(i) > 0.0)) throw m.error(kGaitParameterNames[i], "must be > 0, got " + show(p(i)));
+    if (!(p(i) > 0.0)) throw m.error(names[i], "must be > 0, got " + show(p(i)));
   }
   m.rejectUnknownKeys();
   return p;
@@ -159,10 +191,12 @@ GaitFile loadGaitFile(const std::string& path) {
   const std::string robot = doc.string("robot");
   if (robot.empty()) throw doc.error("robot", "must name the robot description file");
   g.robot_path = resolveRobotPath(path, robot);
-  g.parameters = parseGaitParameters(doc.map("parameters"));
+  const Parameterisation par = parseParameterisation(doc);
+  g.parameters = parseGaitParameters(doc.map("parameters"), par);
   if (const std::optional<YamlMap> options = doc.optionalMap("options")) {
     g.options = parseGaitOptions(*options, g.model_options);
   }
+  g.options.parameterisation = par;
   doc.rejectUnknownKeys();
 
   std::error_code ec;
@@ -212,14 +246,17 @@ std::string gaitOptionsYaml(const GaitOptions& o, const ModelOptions& mo, int in
 std::string gaitYaml(const std::string& robot_path_relative, const GaitParameters& p,
                      const GaitOptions& options, const ModelOptions& model_options) {
   std::ostringstream out;
-  out << "# Gait file written by gaitopt: one walking step of Miossec's 17-parameter\n"
+  const Parameterisation& par = options.parameterisation;
+  out << "# Gait file written by gaitopt: one walking step of Miossec's polynomial\n"
          "# parametrisation (radians, metres, seconds) and the options it was evaluated with.\n"
          "# Values are at full precision so that reading the file back is exact.\n";
   out << "robot: " << yamlString(robot_path_relative) << "  # relative to this file\n";
+  if (!par.isThesis())
+    out << "parameterisation: {ss_points: " << par.ss_points << ", ds_points: " << par.ds_points
+        << "}\n";
   out << "parameters:\n";
-  for (int i = 0; i < kNumGaitParameters; ++i) {
-    out << "  " << kGaitParameterNames[i] << ": " << formatDouble(p(i)) << '\n';
-  }
+  const std::vector<std::string> names = par.names();
+  for (int i = 0; i < par.size(); ++i) out << "  " << names[i] << ": " << formatDouble(p(i)) << '\n';
   out << "options:\n" << gaitOptionsYaml(options, model_options, 2);
   return out.str();
 }

@@ -37,17 +37,23 @@ double objective(unsigned n, const double* x, double* grad, void* data) {
   return f;
 }
 
-// NLopt wants c(x) ≤ 0: each row gives (g − upper) and, only where the lower bound is finite,
-// (lower − g); an equality (lower = upper) thus becomes two opposite inequalities.
+// NLopt wants c(x) ≤ 0 and h(x) = 0: an inequality row gives (g − upper) and, where the lower
+// bound is finite, (lower − g); a row with lower = upper (the speed (3.50)) is an equality,
+// which SQP handles far better than two opposite inequalities.
 struct RowMap {
-  std::vector<int> upper_rows, lower_rows;
+  std::vector<int> upper_rows, lower_rows, equality_rows;
   VectorX lower, upper;
+  std::size_t inequalities() const { return upper_rows.size() + lower_rows.size(); }
 };
 
 RowMap rowMap(const NlpProblem& p) {
   RowMap r;
   p.constraintBounds(r.lower, r.upper);
   for (int i = 0; i < r.lower.size(); ++i) {
+    if (r.lower(i) == r.upper(i)) {
+      r.equality_rows.push_back(i);
+      continue;
+    }
     if (r.upper(i) < 1e19) r.upper_rows.push_back(i);
     if (r.lower(i) > -1e19) r.lower_rows.push_back(i);
   }
@@ -57,6 +63,7 @@ RowMap rowMap(const NlpProblem& p) {
 struct ConstraintContext {
   NloptContext* base;
   RowMap rows;
+  bool equalities;  // this callback fills the equality rows
 };
 
 void constraints(unsigned, double* result, unsigned n, const double* x, double* grad, void* data) {
@@ -64,20 +71,25 @@ void constraints(unsigned, double* result, unsigned n, const double* x, double* 
   const VectorX v = Eigen::Map<const VectorX>(x, n);
   VectorX g;
   MatrixX jac;
-  const std::size_t rows = c->rows.upper_rows.size() + c->rows.lower_rows.size();
+  const std::size_t rows = c->equalities ? c->rows.equality_rows.size() : c->rows.inequalities();
   if (!c->base->problem.constraints(v, g) || (grad && !c->base->problem.constraintJacobian(v, jac))) {
     std::fill(result, result + rows, kUndefinedViolation);
     if (grad) std::fill(grad, grad + rows * n, 0.0);
     return;
   }
   int out = 0;
-  for (int sign : {1, -1})
-    for (int i : sign > 0 ? c->rows.upper_rows : c->rows.lower_rows) {
-      result[out] = sign > 0 ? g(i) - c->rows.upper(i) : c->rows.lower(i) - g(i);
-      if (grad)
-        for (unsigned j = 0; j < n; ++j) grad[out * n + j] = sign * jac(i, j);
-      ++out;
-    }
+  const auto put = [&](int i, double sign, double offset) {
+    result[out] = sign * (g(i) - offset);
+    if (grad)
+      for (unsigned j = 0; j < n; ++j) grad[out * n + j] = sign * jac(i, j);
+    ++out;
+  };
+  if (c->equalities) {
+    for (int i : c->rows.equality_rows) put(i, 1.0, c->rows.upper(i));
+    return;
+  }
+  for (int i : c->rows.upper_rows) put(i, 1.0, c->rows.upper(i));
+  for (int i : c->rows.lower_rows) put(i, -1.0, c->rows.lower(i));
 }
 
 }  // namespace
@@ -90,9 +102,15 @@ NlpSolution solveWithNlopt(NlpProblem& problem, const NlpSettings& settings, Nlo
   opt.set_lower_bounds(std::vector<double>(vars.lower.data(), vars.lower.data() + n));
   opt.set_upper_bounds(std::vector<double>(vars.upper.data(), vars.upper.data() + n));
   opt.set_min_objective(objective, &ctx);
-  ConstraintContext cctx{&ctx, rowMap(problem)};
-  const std::size_t m = cctx.rows.upper_rows.size() + cctx.rows.lower_rows.size();
-  opt.add_inequality_mconstraint(constraints, &cctx, std::vector<double>(m, settings.constraint_tol));
+  ConstraintContext inequalities{&ctx, rowMap(problem), false};
+  ConstraintContext equalities{&ctx, inequalities.rows, true};
+  opt.add_inequality_mconstraint(
+      constraints, &inequalities,
+      std::vector<double>(inequalities.rows.inequalities(), settings.constraint_tol));
+  if (!equalities.rows.equality_rows.empty())
+    opt.add_equality_mconstraint(
+        constraints, &equalities,
+        std::vector<double>(equalities.rows.equality_rows.size(), settings.constraint_tol));
   opt.set_ftol_rel(settings.tol);
   opt.set_xtol_rel(settings.tol);
   opt.set_maxeval(method == NloptMethod::Slsqp ? settings.max_iter : 50 * settings.max_iter);
@@ -104,8 +122,9 @@ NlpSolution solveWithNlopt(NlpProblem& problem, const NlpSettings& settings, Nlo
     sol.status = r == nlopt::MAXEVAL_REACHED ? NlpStatus::MaxIterations : NlpStatus::Solved;
     sol.x = Eigen::Map<const VectorX>(x.data(), n);
   } catch (const std::exception& e) {
+    // NLopt leaves its best point in x also when it stops on an error (e.g. roundoff-limited).
     sol.status = NlpStatus::Failed;
-    sol.x = ctx.last_x;
+    sol.x = Eigen::Map<const VectorX>(x.data(), n);
     sol.message = e.what();
   }
   // SLSQP may end on a refused (undefined) trial point: fall back to the last defined one.

@@ -1,5 +1,7 @@
 #include "gaitopt/optimize_config.hpp"
 
+#include "gaitopt/gait_refinement.hpp"
+
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -140,18 +142,8 @@ OptimizeConfig loadOptimizeConfig(const std::string& path) {
   }
   c.options.target_speed = c.speed.value_or(0.0);
 
-  if (doc.has("parameterisation")) {
-    const std::string v = doc.string("parameterisation");
-    if (v != kParameterisations[0]) {
-      throw doc.error("parameterisation",
-                      "unsupported parameterisation '" + v +
-                          "'; supported: 'miossec' (the 17-parameter polynomial step of "
-                          "Miossec 2004, section 3.2)");
-    }
-    c.parameterisation = v;
-  } else {
-    doc.optionalNumber("parameterisation");  // records the key as known
-  }
+  c.options.parameterisation = parseParameterisation(doc);
+  c.parameterisation = c.options.parameterisation.label();
 
   std::string initial = "default";
   if (doc.has("initial_guess")) {
@@ -175,14 +167,30 @@ OptimizeConfig loadOptimizeConfig(const std::string& path) {
     const std::string gait = resolve(path, initial);
     requireReadable(doc, "initial_guess", "gait file", gait, initial);
     c.initial_guess_path = gait;
-    c.initial_guess_parameters = loadGaitFile(gait).parameters;  // errors name the gait file
+    const GaitFile guess = loadGaitFile(gait);  // errors name the gait file
+    c.initial_guess_parameters = guess.parameters;
+    c.initial_guess_parameterisation = guess.options.parameterisation;
+    if (guess.options.parameterisation.ss_points > c.options.parameterisation.ss_points ||
+        guess.options.parameterisation.ds_points > c.options.parameterisation.ds_points)
+      throw doc.error("initial_guess", "the gait file's parameterisation (" +
+                                           guess.options.parameterisation.label() +
+                                           ") is richer than the configured one (" +
+                                           c.parameterisation + ")");
   }
   return c;
 }
 
 GaitParameters configuredInitialGuess(const OptimizeConfig& config, const Model& model) {
-  return config.initial_guess_path ? config.initial_guess_parameters
-                                   : defaultInitialGuess(model, config.speed);
+  const GaitParameters p = config.initial_guess_path ? config.initial_guess_parameters
+                                                     : defaultInitialGuess(model, config.speed);
+  const Parameterisation from =
+      config.initial_guess_path ? config.initial_guess_parameterisation : Parameterisation{};
+  if (from == config.options.parameterisation) return p;
+  // A coarser start is written in the configured parameterisation without changing its motion.
+  GaitOptions coarse = config.options;
+  coarse.parameterisation = from;
+  return refineParameters(GaitEvaluator(config.robot, coarse, config.model_options), p,
+                          config.options.parameterisation);
 }
 
 OptimizationRequest optimizationRequest(const OptimizeConfig& config,

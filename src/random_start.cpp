@@ -18,16 +18,16 @@ double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x
 
 }  // namespace
 
-GaitParameters randomStartHalfWidths() {
+GaitParameters randomStartHalfWidths(const Parameterisation& par) {
   GaitParameters h(kNumGaitParameters);
   // α, δ1, θ3, d, α, δ1, θ3, δ1, θ3, x2r, z2, α̇, δ1*, δ2*, δ1*, δ2*, T_DS
   h << 0.15, 0.15, 0.1, 0.05, 0.15, 0.15, 0.1, 0.15, 0.1, 0.05, 0.02, 0.3, 0.5, 0.5, 0.5, 0.5,
       0.05;
-  return h;
+  return extendPerParameter(h, par, 0.15, 0.1);
 }
 
-RandomStartBox randomStartBox(const GaitParameters& centre) {
-  const GaitParameters h = randomStartHalfWidths();
+RandomStartBox randomStartBox(const GaitParameters& centre, const Parameterisation& par) {
+  const GaitParameters h = randomStartHalfWidths(par);
   RandomStartBox box{centre - h, centre + h};
   box.lower(kStepLength) = std::max(box.lower(kStepLength), kMinStepLength);
   box.lower(kZ2Int) = std::max(box.lower(kZ2Int), kMinSwingHeight);
@@ -39,10 +39,11 @@ RandomStartBox randomStartBox(const GaitParameters& centre) {
   return box;
 }
 
-GaitParameters randomStart(const GaitParameters& centre, std::mt19937_64& rng) {
-  const RandomStartBox box = randomStartBox(centre);
-  GaitParameters p(kNumGaitParameters);
-  for (int i = 0; i < kNumGaitParameters; ++i) {
+GaitParameters randomStart(const GaitParameters& centre, std::mt19937_64& rng,
+                           const Parameterisation& par) {
+  const RandomStartBox box = randomStartBox(centre, par);
+  GaitParameters p(par.size());
+  for (int i = 0; i < par.size(); ++i) {
     p(i) = box.lower(i) + unit(rng) * (box.upper(i) - box.lower(i));
   }
   return p;

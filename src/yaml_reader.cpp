@@ -117,6 +117,11 @@ int YamlMap::line() const { return state_->line; }
 
 bool YamlMap::has(const std::string& key) const { return lookup(state_->node, key).has_value(); }
 
+bool YamlMap::hasMapping(const std::string& key) const {
+  const auto entry = lookup(state_->node, key);
+  return entry && entry->second.IsMap();
+}
+
 std::optional<Entry> YamlMap::find(const std::string& key) const {
   state_->known.insert(key);
   return lookup(state_->node, key);

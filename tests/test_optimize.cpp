@@ -311,7 +311,7 @@ TEST_CASE("optimize: bad configurations name the file, the key and its line", "[
   requireError(configWith({{6, "speed: -0.5"}}), "speed", 6, "must be > 0");
   requireError(configWith({{6, "speed: \"0.5\""}}), "speed", 6, "expected a number");
   requireError(configWith({{7, "parameterisation: bspline"}}), "parameterisation", 7,
-               "supported: 'miossec'");
+               "expected 'miossec' or a mapping {ss_points, ds_points}");
   requireError(configWith({{12, "  max_iter: 0"}}), "solver.max_iter", 12, "integer >= 1");
   requireError(configWith({{12, "  max_iter: 2.5"}}), "solver.max_iter", 12, "integer >= 1");
   requireError(configWith({{13, "  tol: 0"}}), "solver.tol", 13, "must be > 0");

@@ -34,6 +34,45 @@ PinnedTerms<S> pinnedTerms(const Model& model, const Vector5<S>& q, const Vector
   return t;
 }
 
+// A v without forming A (= Tᵀ M_θ T + Σ I_mj w_j w_jᵀ): what a prescribed motion needs, at
+// a fraction of the cost of the full matrix on an AD scalar.
+template <class S>
+Vector5<S> inertiaTimes(const Model& model, const Matrix5<S>& M_theta, const Vector5<S>& v) {
+  const Vector5<S> theta_v = constantTimes(model.theta_map, v);
+  Vector5<S> out = constantTimes(model.theta_map_transpose, Vector5<S>(M_theta * theta_v));
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j)
+      if (model.rotor_inertia_matrix(i, j) != 0.0) out(i) += model.rotor_inertia_matrix(i, j) * v(j);
+  return out;
+}
+
+// Generalised forces of a motion at (q, q̇) for the accelerations q̈: A q̈ + C + G, from one
+// chain state (one set of sines and cosines).
+template <class S> struct PinnedMotionForces {
+  Vector5<S> tau;          // A q̈ + C + G
+  Matrix25<S> D2;          // ∂X2/∂q
+  Vector2<S> foot2, H2, com, com_acceleration;
+};
+
+template <class S>
+PinnedMotionForces<S> pinnedMotionForces(const Model& model, const ChainState<S>& st,
+                                         const Vector5<S>& qdd) {
+  const ChainCoefficients& c = model.pinned;
+  const Matrix5<S> Mt = chainInertiaTheta(c, model.inertia, st);
+  PinnedMotionForces<S> f;
+  f.tau = inertiaTimes(model, Mt, qdd) +
+          constantTimes(model.theta_map_transpose, chainCoriolisTheta(c, st)) +
+          constantTimes(model.theta_map_transpose, chainGravityTheta(c, model.gravity, st));
+  f.D2 = chainPointJacobian(model, c.foot2, st);
+  f.foot2 = chainPoint(c.foot2, st);
+  f.H2 = chainPointBias(c.foot2, st);
+  const double inv_m = 1.0 / model.total_mass;
+  f.com = chainPoint(c.b, st) * inv_m;
+  f.com_acceleration =
+      chainPointAcceleration(c.b, st, constantTimes(model.theta_map, qdd)) * inv_m;
+  return f;
+}
+
 // Whole-body CoM acceleration for given q̈ (Newton equations (1.36)).
 template <class S>
 Vector2<S> pinnedComAcceleration(const Model& model, const Vector5<S>& q, const Vector5<S>& qd,

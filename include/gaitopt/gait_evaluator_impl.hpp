@@ -182,14 +182,19 @@ SsPathPoint<S> ssPathPoint(const Model& m, const GaitMotion<S>& mo, const S& alp
     pt.qs(j + 1) = v.first;
     pt.qss(j + 1) = v.second;
   }
-  const PinnedTerms<S> t = pinnedTerms(m, pt.q, pt.qs);
-  pt.tau_a = t.A * pt.qs;                    // f = tau_a(0) (3.11)
-  pt.tau_c = t.A * pt.qss + t.C;             // f' = tau_c(0) (3.11)
-  pt.G = t.G;                                // G1 = M g x_G
-  pt.com_a = t.com_velocity;
-  pt.com_c = pinnedComAcceleration(m, pt.q, pt.qs, pt.qss);
-  pt.foot2 = t.foot2;
-  pt.com = t.com;
+  // With q̇ := q*: C(q, q*) and the CoM terms per unit α̇²; A only through products.
+  const ChainState<S> st = chainState(m, pt.q, pt.qs);
+  const ChainCoefficients& c = m.pinned;
+  const Matrix5<S> Mt = chainInertiaTheta(c, m.inertia, st);
+  pt.tau_a = inertiaTimes(m, Mt, pt.qs);  // f = tau_a(0) (3.11)
+  pt.tau_c = inertiaTimes(m, Mt, pt.qss) +
+             constantTimes(m.theta_map_transpose, chainCoriolisTheta(c, st));  // f' (3.11)
+  pt.G = constantTimes(m.theta_map_transpose, chainGravityTheta(c, m.gravity, st));  // G1 = M g x_G
+  const double inv_m = 1.0 / m.total_mass;
+  pt.com_a = chainPointVelocity(c.b, st) * inv_m;
+  pt.com_c = chainPointAcceleration(c.b, st, constantTimes(m.theta_map, pt.qss)) * inv_m;
+  pt.foot2 = chainPoint(c.foot2, st);
+  pt.com = chainPoint(c.b, st) * inv_m;
   return pt;
 }
 
@@ -356,18 +361,19 @@ PhaseSample<S> dsSample(const Model& m, const GaitOptions& o, const GaitMotion<S
   const Vector2<S> leg2 = leg2InverseKinematics(m, pr.alpha, pr.d1,
                                                 rearFootFromHip(m, pr.alpha, pr.d1, mo.d));
   s.q = Vector5<S>(pr.alpha, pr.d1, pr.d2, leg2(0), leg2(1));
-  const Matrix25<S> D2 =
-      chainPointJacobian(m, m.pinned.foot2, chainState(m, s.q, Vector5<S>(Vector5<S>::Zero())));
+  ChainState<S> st = chainState(m, s.q, Vector5<S>(Vector5<S>::Zero()));
+  const Matrix25<S> D2 = chainPointJacobian(m, m.pinned.foot2, st);
   Eigen::Matrix<S, 2, 2> D34;
   D34 << D2(0, 3), D2(0, 4), D2(1, 3), D2(1, 4);
   const Eigen::Matrix<S, 2, 2> D34inv = D34.inverse();
   const Vector2<S> v34 = -D34inv * (D2.col(0) * pr.alphad + D2.col(1) * pr.d1d);  // (1.34)
   s.qd = Vector5<S>(pr.alphad, pr.d1d, pr.d2d, v34(0), v34(1));
-  const PinnedTerms<S> terms = pinnedTerms(m, s.q, s.qd);
-  const Vector2<S> a34 = -D34inv * (D2.col(0) * pr.alphadd + D2.col(1) * pr.d1dd + terms.H2);
+  st.theta_dot = constantTimes(m.theta_map, s.qd);
+  const Vector2<S> H2 = chainPointBias(m.pinned.foot2, st);
+  const Vector2<S> a34 = -D34inv * (D2.col(0) * pr.alphadd + D2.col(1) * pr.d1dd + H2);
   s.qdd = Vector5<S>(pr.alphadd, pr.d1dd, pr.d2dd, a34(0), a34(1));  // (1.35)
-  const DoubleSupportAffine<S> aff =
-      doubleSupportAffine(m, terms, s.q, s.qd, s.qdd, SignMode::Smooth);
+  const PinnedMotionForces<S> forces = pinnedMotionForces(m, st, s.qdd);
+  const DoubleSupportAffine<S> aff = doubleSupportAffine(m, forces, s.qd, SignMode::Smooth);
   const double M = m.total_mass;
   const S R2z0 = aff.R2z0;                                          // (3.58)
   const S R1z0 = M * (aff.com_acceleration(1) + m.gravity) - R2z0;  // (3.59) corrected
@@ -385,8 +391,8 @@ PhaseSample<S> dsSample(const Model& m, const GaitOptions& o, const GaitMotion<S
   s.gamma_star = aff.J - aff.K * R2x;  // (3.62)
   s.R2 = Vector2<S>(R2x, R2z0 + aff.R2z_slope * R2x);
   s.R1 = Vector2<S>(M * aff.com_acceleration(0), M * (aff.com_acceleration(1) + m.gravity)) - s.R2;
-  s.foot2 = terms.foot2;
-  s.com = terms.com;
+  s.foot2 = forces.foot2;
+  s.com = forces.com;
   return s;
 }
 

@@ -3,7 +3,8 @@
 // for and the evaluation options, as read by `gaitopt evaluate` and written by the optimiser.
 //
 //   robot: ../robot/rabbit_miossec.yaml   # relative to the gait file's directory
-//   parameters: {alpha_iDS: ..., ..., T_DS: ...}   # all 17, radians / metres / seconds
+//   parameterisation: {ss_points: 3, ds_points: 1}   # optional; default the thesis' 17
+//   parameters: {alpha_iDS: ..., ..., T_DS: ...}   # all of them, radians / metres / seconds
 //   options: {...}                        # optional, every key optional (see README)
 //
 // Reading is as strict as for robot files: every problem is a ConfigError naming the file,
@@ -33,9 +34,14 @@ struct GaitFile {
 // reported by loadRobot, naming the robot file.
 GaitFile loadGaitFile(const std::string& path);
 
-// The 17 parameters of `parameters_map` (each required, plain finite numbers; d and T_DS > 0).
-// Unknown keys are rejected.
-GaitParameters parseGaitParameters(const YamlMap& parameters_map);
+// The `parameterisation` key of `doc`: absent or "miossec" (the thesis' 17 parameters), or a
+// mapping {ss_points: odd ≥ 1, ds_points: ≥ 0} of interior SS/DS configurations.
+Parameterisation parseParameterisation(const YamlMap& doc);
+
+// The parameters of `parameters_map`, named by `par.names()` (each required, plain finite
+// numbers; d and T_DS > 0). Unknown keys are rejected.
+GaitParameters parseGaitParameters(const YamlMap& parameters_map,
+                                   const Parameterisation& par = {});
 
 // Gait options of an `options:` mapping (every key optional; defaults are those of GaitOptions
 // and ModelOptions). `rotor` and `friction_smoothing` go to `model_options`, which is

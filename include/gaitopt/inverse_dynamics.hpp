@@ -42,22 +42,20 @@ template <class S> struct DoubleSupportAffine {
   Vector2<S> com_acceleration;
 };
 
-// Overload for callers that already hold the model terms at (q, q̇).
+// From the generalised forces of the motion (A q̈ + C + G and the foot-2 Jacobian).
 template <class S>
-DoubleSupportAffine<S> doubleSupportAffine(const Model& model, const PinnedTerms<S>& t,
-                                           const Vector5<S>& q, const Vector5<S>& qd,
-                                           const Vector5<S>& qdd, SignMode mode) {
-  const Vector5<S> tau = t.A * qdd + t.C + t.G;
+DoubleSupportAffine<S> doubleSupportAffine(const Model& model, const PinnedMotionForces<S>& f,
+                                           const Vector5<S>& qd, SignMode mode) {
   DoubleSupportAffine<S> r;
   // α-row: τ1 = D2(0,0) R2x + D2(1,0) R2z, with D2(·,0) = (−z2, x2).
-  r.R2z0 = tau(0) / t.D2(1, 0);
-  r.R2z_slope = -t.D2(0, 0) / t.D2(1, 0);
-  const Vector4<S> d2x = t.D2.row(0).template tail<4>().transpose();
-  const Vector4<S> d2z = t.D2.row(1).template tail<4>().transpose();
-  r.J = solveDGamma25(Vector4<S>(tau.template tail<4>() - d2z * r.R2z0)) +
+  r.R2z0 = f.tau(0) / f.D2(1, 0);
+  r.R2z_slope = -f.D2(0, 0) / f.D2(1, 0);
+  const Vector4<S> d2x = f.D2.row(0).template tail<4>().transpose();
+  const Vector4<S> d2z = f.D2.row(1).template tail<4>().transpose();
+  r.J = solveDGamma25(Vector4<S>(f.tau.template tail<4>() - d2z * r.R2z0)) +
         frictionTorque(model, jointSpeeds(qd), mode);
   r.K = solveDGamma25(Vector4<S>(d2x + d2z * r.R2z_slope));
-  r.com_acceleration = pinnedComAcceleration(model, q, qd, qdd);
+  r.com_acceleration = f.com_acceleration;
   return r;
 }
 
@@ -65,7 +63,8 @@ template <class S>
 DoubleSupportAffine<S> doubleSupportAffine(const Model& model, const Vector5<S>& q,
                                            const Vector5<S>& qd, const Vector5<S>& qdd,
                                            SignMode mode) {
-  return doubleSupportAffine(model, pinnedTerms(model, q, qd), q, qd, qdd, mode);
+  return doubleSupportAffine(model, pinnedMotionForces(model, chainState(model, q, qd), qdd), qd,
+                             mode);
 }
 
 template <class S> struct DoubleSupportInverseDynamics {

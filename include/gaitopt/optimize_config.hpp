@@ -47,6 +47,7 @@ struct OptimizeConfig {
   // for `initial_guess: default` (defaultInitialGuess of the robot at `speed`).
   std::optional<std::string> initial_guess_path;
   GaitParameters initial_guess_parameters;  // filled for a gait file
+  Parameterisation initial_guess_parameterisation;  // that file's
   SolverSettings solver;  // defaults of SolverSettings for every absent key
 };
 

@@ -38,6 +38,8 @@ class YamlMap {
 
   // Presence only; does not count as reading the key.
   bool has(const std::string& key) const;
+  // Presence of `key` holding a mapping; does not count as reading the key.
+  bool hasMapping(const std::string& key) const;
 
   // Required values. Numbers must be plain (unquoted) finite scalars.
   double number(const std::string& key) const;

@@ -197,7 +197,7 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
     } else {
       std::mt19937_64 rng(args->seed);
       for (int k = 1; k <= args->random_starts; ++k) {
-        const GaitParameters start = randomStart(initial, rng);
+        const GaitParameters start = randomStart(initial, rng, config.options.parameterisation);
         if (log) *log << "--- random start " << k << "/" << args->random_starts << "\n";
         runs.push_back({k, optimizeGait(evaluator, optimizationRequest(config, start), log)});
         if (log) {

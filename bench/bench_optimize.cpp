@@ -1,0 +1,498 @@
+// bench_optimize: wall-clock cost of whole optimisations on the shipped configurations.
+//
+//   bench_optimize [--json FILE] [--runs N] [--sweep-runs N] [--fd-runs N] [--no-ipopt]
+//                  [--no-configs] [--help]
+//
+// Measurements (configs/default.yaml, read with loadOptimizeConfig; the evaluator is built from
+// the configuration exactly as `gaitopt optimize` builds it):
+//   (a) optimizeGait from the configured start (defaultInitialGuess at the configured speed):
+//       one untimed warm-up run, then `runs` timed runs (default 7); median, min, p90 of the
+//       wall time. Every run must end with the same status and bit-identical C_Gamma.
+//   (b) sweepSpeeds over 0.2:1.0:0.1 (9 speeds), jobs = 1, built as `gaitopt sweep` builds it
+//       (free-speed evaluator, configured start without a speed): `sweep-runs` runs (default
+//       3), median of the total wall time, number of optimal speeds; every run must give the
+//       same statuses and C_Gamma.
+//   (c) peak resident set size of the process after the sweeps (getrusage ru_maxrss) [MiB].
+//   (d) the optimisation of (a) with backend Ipopt, constraint_exchange true, Ipopt option
+//       limited_memory_max_history 30: one run (seconds each); ratio to the SLSQP median.
+//   (e) the optimisation of (a) with GradientMode::FiniteDifference (SLSQP): median of
+//       `fd-runs` (default 3); ratio to the exact-gradient median.
+//   (f) exact vs finite-difference gradients on configs/default.yaml, chesse_0.85.yaml and
+//       chevallereau_aoustin_0.75.yaml (the library call; optimiser configuration files have no
+//       gradient key): status, iterations, function and gradient evaluations, wall time
+//       (median of `fd-runs` for the two extra configurations), final criterion.
+// Targets printed next to the figures: optimisation (a) median ≤ 0.2 s, 9-speed sweep (b)
+// median ≤ 3 s. Exit status: 0, or 1 when a repeated measurement was not deterministic (or the
+// JSON file cannot be written), 2 for bad arguments or unreadable configurations.
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench_timing.hpp"
+#include "gaitopt/atomic_file.hpp"
+#include "gaitopt/gait_evaluator.hpp"
+#include "gaitopt/gait_optimizer.hpp"
+#include "gaitopt/json_writer.hpp"
+#include "gaitopt/optimize_config.hpp"
+#include "gaitopt/speed_sweep.hpp"
+
+namespace {
+
+using namespace gaitopt;
+using namespace gaitopt::bench;
+
+constexpr const char* kConfigDir = GAITOPT_SOURCE_DIR "/configs/";
+constexpr const char* kSweepSpeeds = "0.2:1.0:0.1";
+constexpr double kOptimizeTargetS = 0.2;
+constexpr double kSweepTargetS = 3.0;
+
+double secondsSince(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+struct TimeStats {
+  double median = 0.0, min = 0.0, p90 = 0.0, max = 0.0;
+};
+
+TimeStats timeStats(std::vector<double> t) {
+  TimeStats s;
+  if (t.empty()) return s;
+  std::sort(t.begin(), t.end());
+  const std::size_t n = t.size();
+  s.min = t.front();
+  s.max = t.back();
+  s.median = n % 2 == 1 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(0.9 * static_cast<double>(n)));
+  s.p90 = t[std::max<std::size_t>(rank, 1) - 1];  // nearest rank
+  return s;
+}
+
+// The criterion of a run, when its step is defined and its motion computed.
+std::optional<double> criterionOf(const OptimizationResult& r, Criterion c) {
+  if (!r.evaluation.motion_computed || !r.evaluation.defined()) return std::nullopt;
+  return criterionValue(r.evaluation, c);
+}
+
+// One optimisation: its external wall time and the solver's figures.
+struct Run {
+  double wall_s = 0.0;
+  std::string status;
+  std::optional<double> criterion;
+  int iterations = 0, function_evaluations = 0, gradient_evaluations = 0;
+};
+
+Run runOnce(const GaitEvaluator& ev, const OptimizationRequest& req, Criterion c) {
+  const Clock::time_point t0 = Clock::now();
+  const OptimizationResult r = optimizeGait(ev, req);
+  Run run;
+  run.wall_s = secondsSince(t0);
+  run.status = r.status;
+  run.criterion = criterionOf(r, c);
+  run.iterations = r.iterations;
+  run.function_evaluations = r.function_evaluations;
+  run.gradient_evaluations = r.gradient_evaluations;
+  g_sink = g_sink + (run.criterion ? *run.criterion : 0.0);
+  return run;
+}
+
+// Identical status, criterion (bitwise) and counts.
+bool sameOutcome(const Run& a, const Run& b) {
+  return a.status == b.status && a.criterion.has_value() == b.criterion.has_value() &&
+         (!a.criterion || *a.criterion == *b.criterion) && a.iterations == b.iterations &&
+         a.function_evaluations == b.function_evaluations &&
+         a.gradient_evaluations == b.gradient_evaluations;
+}
+
+struct Series {
+  std::vector<Run> runs;
+  TimeStats time;
+  bool deterministic = true;
+};
+
+Series repeat(const GaitEvaluator& ev, const OptimizationRequest& req, Criterion c, int n) {
+  Series s;
+  std::vector<double> times;
+  for (int i = 0; i < n; ++i) {
+    s.runs.push_back(runOnce(ev, req, c));
+    times.push_back(s.runs.back().wall_s);
+    if (!sameOutcome(s.runs.back(), s.runs.front())) s.deterministic = false;
+  }
+  s.time = timeStats(times);
+  return s;
+}
+
+std::string criterionText(const std::optional<double>& v) {
+  if (!v) return "n/a";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.10g", *v);
+  return buf;
+}
+
+const char* verdict(double value, double target) { return value <= target ? "met" : "MISSED"; }
+
+// One configuration of the gradient comparison (f).
+struct GradientCase {
+  std::string name;
+  Series exact, fd;
+};
+
+struct SweepRun {
+  double wall_s = 0.0;
+  int optimal = 0;
+  std::vector<double> speeds;
+  std::vector<std::string> status;
+  std::vector<std::optional<double>> criterion;
+  std::vector<int> attempts;
+};
+
+void usage(std::ostream& out) {
+  out << "usage: bench_optimize [--json FILE] [--runs N] [--sweep-runs N] [--fd-runs N]\n"
+         "                      [--no-ipopt] [--no-configs]\n"
+         "  --json FILE     also write every figure as JSON to FILE\n"
+         "  --runs N        timed SLSQP optimisations of configs/default.yaml (default 7, >= 7)\n"
+         "  --sweep-runs N  timed 9-speed sweeps (default 3)\n"
+         "  --fd-runs N     finite-difference runs (and exact runs of the extra configs; default 3)\n"
+         "  --no-ipopt      skip the Ipopt run (d)\n"
+         "  --no-configs    skip the chesse / chevallereau_aoustin gradient comparison\n";
+}
+
+void writeRun(JsonWriter& w, const Run& r) {
+  w.beginObject();
+  w.key("wall_time_s").value(r.wall_s);
+  w.key("status").value(r.status);
+  w.key("criterion");
+  if (r.criterion) w.value(*r.criterion);
+  else w.null();
+  w.key("iterations").value(r.iterations);
+  w.key("function_evaluations").value(r.function_evaluations);
+  w.key("gradient_evaluations").value(r.gradient_evaluations);
+  w.endObject();
+}
+
+void writeSeries(JsonWriter& w, const Series& s) {
+  w.beginObject();
+  w.key("count").value(static_cast<int>(s.runs.size()));
+  w.key("median_s").value(s.time.median);
+  w.key("min_s").value(s.time.min);
+  w.key("p90_s").value(s.time.p90);
+  w.key("max_s").value(s.time.max);
+  w.key("deterministic").value(s.deterministic);
+  w.key("status").value(s.runs.front().status);
+  w.key("criterion");
+  if (s.runs.front().criterion) w.value(*s.runs.front().criterion);
+  else w.null();
+  w.key("iterations").value(s.runs.front().iterations);
+  w.key("function_evaluations").value(s.runs.front().function_evaluations);
+  w.key("gradient_evaluations").value(s.runs.front().gradient_evaluations);
+  w.key("runs").beginArray();
+  for (const Run& r : s.runs) writeRun(w, r);
+  w.endArray();
+  w.endObject();
+}
+
+void printSeriesRuns(const char* label, const Series& s) {
+  for (std::size_t i = 0; i < s.runs.size(); ++i)
+    std::printf("  %s run %zu: %8.3f s  status %-10s  C_Gamma %s  (%d iterations, %d f-evals, %d "
+                "g-evals)\n",
+                label, i + 1, s.runs[i].wall_s, s.runs[i].status.c_str(),
+                criterionText(s.runs[i].criterion).c_str(), s.runs[i].iterations,
+                s.runs[i].function_evaluations, s.runs[i].gradient_evaluations);
+  std::printf("  %s: %s\n", label,
+              s.deterministic ? "deterministic (same status, C_Gamma bit-identical, same counts)"
+                              : "NON-DETERMINISTIC: runs differ (see above)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string json_path;
+  int runs = 7, sweep_runs = 3, fd_runs = 3;
+  bool with_ipopt = true, with_configs = true;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (arg == "--help" || arg == "-h") {
+      usage(std::cout);
+      return 0;
+    } else if (arg == "--json" && has_value) {
+      json_path = argv[++i];
+    } else if (arg == "--runs" && has_value && parsePositive(argv[i + 1], runs) && runs >= 7) {
+      ++i;
+    } else if (arg == "--sweep-runs" && has_value && parsePositive(argv[i + 1], sweep_runs)) {
+      ++i;
+    } else if (arg == "--fd-runs" && has_value && parsePositive(argv[i + 1], fd_runs)) {
+      ++i;
+    } else if (arg == "--no-ipopt") {
+      with_ipopt = false;
+    } else if (arg == "--no-configs") {
+      with_configs = false;
+    } else {
+      std::cerr << "bench_optimize: bad argument '" << arg << "'\n";
+      usage(std::cerr);
+      return 2;
+    }
+  }
+
+  const std::string default_path = std::string(kConfigDir) + "default.yaml";
+  std::optional<OptimizeConfig> config;
+  std::optional<GaitEvaluator> evaluator;
+  try {
+    config.emplace(loadOptimizeConfig(default_path));
+    evaluator.emplace(config->robot, config->options, config->model_options);
+  } catch (const std::exception& e) {
+    std::cerr << "bench_optimize: error: " << e.what() << "\n";
+    return 2;
+  }
+  const GaitEvaluator& ev = *evaluator;
+  const Criterion criterion = config->criterion;
+  const OptimizationRequest request =
+      optimizationRequest(*config, configuredInitialGuess(*config, ev.model()));
+  const std::string date = utcNow();
+  const std::string cpu = cpuModel();
+  const Clock::time_point start = Clock::now();
+  bool deterministic = true;
+
+  std::printf("bench_optimize  %s\n", date.c_str());
+  std::printf("cpu:       %s\n", cpu.c_str());
+  std::printf("compiler:  %s (%s)\n", kCompiler, kBuildFlags);
+  std::printf("config:    %s (robot %s, criterion %s, speed %s m/s, backend %s, hierarchy %s, "
+              "constraint_exchange %s)\n\n",
+              default_path.c_str(), config->robot_path.c_str(), criterionName(criterion),
+              config->speed ? std::to_string(*config->speed).c_str() : "free",
+              backendName(config->solver.backend), strategyName(config->solver.hierarchy),
+              config->solver.constraint_exchange ? "true" : "false");
+
+  // (a) the configured optimisation, exact gradients.
+  std::printf("(a) optimizeGait, configured start: 1 warm-up + %d timed runs\n", runs);
+  const Run warmup = runOnce(ev, request, criterion);
+  Series exact = repeat(ev, request, criterion, runs);
+  if (!sameOutcome(warmup, exact.runs.front())) exact.deterministic = false;
+  std::printf("  warm-up:  %8.3f s  status %-10s  C_Gamma %s\n", warmup.wall_s,
+              warmup.status.c_str(), criterionText(warmup.criterion).c_str());
+  printSeriesRuns("exact", exact);
+  deterministic = deterministic && exact.deterministic;
+  std::printf("  wall time [s]: median %.3f  min %.3f  p90 %.3f   target median <= %.1f s: %s\n\n",
+              exact.time.median, exact.time.min, exact.time.p90, kOptimizeTargetS,
+              verdict(exact.time.median, kOptimizeTargetS));
+
+  // (b) the 9-speed sweep, built as `gaitopt sweep` builds it.
+  OptimizeConfig free_config = *config;
+  free_config.speed.reset();
+  free_config.options.target_speed = 0.0;
+  const GaitEvaluator free_ev(free_config.robot, free_config.options, free_config.model_options);
+  const OptimizationRequest base =
+      optimizationRequest(free_config, configuredInitialGuess(free_config, free_ev.model()));
+  const std::vector<double> speeds = parseSpeedRange(kSweepSpeeds);
+  SweepSettings sweep_settings;
+  sweep_settings.jobs = 1;
+  std::printf("(b) sweepSpeeds %s (%zu speeds), jobs 1: %d timed runs\n", kSweepSpeeds,
+              speeds.size(), sweep_runs);
+  std::vector<SweepRun> sweeps;
+  bool sweep_deterministic = true;
+  for (int i = 0; i < sweep_runs; ++i) {
+    const Clock::time_point t0 = Clock::now();
+    const std::vector<SweepPoint> points = sweepSpeeds(free_ev, base, speeds, sweep_settings);
+    SweepRun s;
+    s.wall_s = secondsSince(t0);
+    for (const SweepPoint& p : points) {
+      s.speeds.push_back(p.speed);
+      s.status.push_back(p.result.status);
+      s.criterion.push_back(criterionOf(p.result, criterion));
+      s.attempts.push_back(p.attempts);
+      if (p.result.status == "optimal") ++s.optimal;
+    }
+    if (!sweeps.empty() &&
+        (s.status != sweeps.front().status || s.criterion != sweeps.front().criterion))
+      sweep_deterministic = false;
+    std::printf("  sweep run %d: %8.3f s  %d/%zu optimal\n", i + 1, s.wall_s, s.optimal,
+                points.size());
+    sweeps.push_back(std::move(s));
+  }
+  deterministic = deterministic && sweep_deterministic;
+  std::vector<double> sweep_times;
+  for (const SweepRun& s : sweeps) sweep_times.push_back(s.wall_s);
+  const TimeStats sweep_time = timeStats(sweep_times);
+  const SweepRun& first_sweep = sweeps.front();
+  for (std::size_t k = 0; k < first_sweep.speeds.size(); ++k)
+    std::printf("    v=%.3f m/s  %-10s  C_Gamma %-16s  %d attempt%s\n", first_sweep.speeds[k],
+                first_sweep.status[k].c_str(), criterionText(first_sweep.criterion[k]).c_str(),
+                first_sweep.attempts[k], first_sweep.attempts[k] == 1 ? "" : "s");
+  std::printf("  sweeps: %s\n", sweep_deterministic
+                                    ? "deterministic (same statuses, C_Gamma bit-identical)"
+                                    : "NON-DETERMINISTIC: runs differ");
+  std::printf("  total wall time [s]: median %.3f  min %.3f  max %.3f   optimal %d/%zu   "
+              "target median <= %.1f s: %s\n\n",
+              sweep_time.median, sweep_time.min, sweep_time.max, first_sweep.optimal,
+              speeds.size(), kSweepTargetS, verdict(sweep_time.median, kSweepTargetS));
+
+  // (c) peak resident memory so far.
+  rusage usage_after{};
+  getrusage(RUSAGE_SELF, &usage_after);
+  const double peak_rss_mib = static_cast<double>(usage_after.ru_maxrss) / 1024.0;  // kB on Linux
+  std::printf("(c) peak resident set size after the sweeps (ru_maxrss): %.1f MiB\n\n",
+              peak_rss_mib);
+
+  // (d) Ipopt, exchange on, limited_memory_max_history 30.
+  std::optional<Run> ipopt;
+  if (with_ipopt) {
+    OptimizationRequest req = request;
+    req.solver.backend = Backend::Ipopt;
+    req.solver.constraint_exchange = true;
+    req.solver.ipopt_options = {{"limited_memory_max_history", "30"}};
+    std::printf("(d) optimizeGait with Ipopt (constraint_exchange true, "
+                "limited_memory_max_history 30): 1 run\n");
+    ipopt = runOnce(ev, req, criterion);
+    std::printf("  %8.3f s  status %-10s  C_Gamma %s  (%d iterations, %d f-evals, %d g-evals)\n",
+                ipopt->wall_s, ipopt->status.c_str(), criterionText(ipopt->criterion).c_str(),
+                ipopt->iterations, ipopt->function_evaluations, ipopt->gradient_evaluations);
+    std::printf("  ratio Ipopt / SLSQP (median): %.1f\n\n", ipopt->wall_s / exact.time.median);
+  }
+
+  // (e) finite-difference gradients, SLSQP.
+  OptimizationRequest fd_request = request;
+  fd_request.solver.gradients = GradientMode::FiniteDifference;
+  std::printf("(e) optimizeGait with GradientMode::FiniteDifference (SLSQP): %d runs\n", fd_runs);
+  const Series fd = repeat(ev, fd_request, criterion, fd_runs);
+  printSeriesRuns("fd", fd);
+  deterministic = deterministic && fd.deterministic;
+  std::printf("  wall time [s]: median %.3f  min %.3f   ratio FD / exact (medians): %.2f\n\n",
+              fd.time.median, fd.time.min, fd.time.median / exact.time.median);
+
+  // (f) exact vs finite differences on the three shipped SLSQP configurations.
+  std::vector<GradientCase> cases = {{"default.yaml", exact, fd}};
+  if (with_configs) {
+    for (const char* name : {"chesse_0.85.yaml", "chevallereau_aoustin_0.75.yaml"}) {
+      try {
+        const OptimizeConfig c = loadOptimizeConfig(std::string(kConfigDir) + name);
+        const GaitEvaluator cev(c.robot, c.options, c.model_options);
+        OptimizationRequest req = optimizationRequest(c, configuredInitialGuess(c, cev.model()));
+        GradientCase gc;
+        gc.name = name;
+        gc.exact = repeat(cev, req, c.criterion, fd_runs);
+        req.solver.gradients = GradientMode::FiniteDifference;
+        gc.fd = repeat(cev, req, c.criterion, fd_runs);
+        deterministic = deterministic && gc.exact.deterministic && gc.fd.deterministic;
+        cases.push_back(std::move(gc));
+      } catch (const std::exception& e) {
+        std::cerr << "bench_optimize: error: " << e.what() << "\n";
+        return 2;
+      }
+    }
+  }
+  std::printf("(f) exact vs finite-difference gradients (SLSQP; wall time: median)\n");
+  std::printf("  %-32s %-6s %-10s %10s %8s %8s %10s %18s %6s\n", "config", "grad", "status",
+              "iterations", "f-evals", "g-evals", "wall [s]", "criterion", "det.");
+  for (const GradientCase& gc : cases) {
+    for (const auto& [label, s] : {std::pair<const char*, const Series*>{"exact", &gc.exact},
+                                   std::pair<const char*, const Series*>{"fd", &gc.fd}}) {
+      const Run& r = s->runs.front();
+      std::printf("  %-32s %-6s %-10s %10d %8d %8d %10.3f %18s %6s\n", gc.name.c_str(), label,
+                  r.status.c_str(), r.iterations, r.function_evaluations,
+                  r.gradient_evaluations, s->time.median, criterionText(r.criterion).c_str(),
+                  s->deterministic ? "yes" : "NO");
+    }
+    std::printf("  %-32s ratio FD / exact wall time: %.2f\n", gc.name.c_str(),
+                gc.fd.time.median / gc.exact.time.median);
+  }
+
+  const double total_s = secondsSince(start);
+  std::printf("\ntotal benchmark time %.1f s; %s\n(sink %g)\n", total_s,
+              deterministic ? "every repeated measurement deterministic"
+                            : "NON-DETERMINISM detected (exit status 1)",
+              static_cast<double>(g_sink));
+
+  if (!json_path.empty()) {
+    JsonWriter w;
+    w.beginObject();
+    w.key("benchmark").value("bench_optimize");
+    w.key("date").value(date);
+    w.key("cpu").value(cpu);
+    w.key("compiler").value(std::string(kCompiler));
+    w.key("build").value(std::string(kBuildFlags));
+    w.key("config").value(default_path);
+    w.key("criterion").value(criterionName(criterion));
+    w.key("deterministic").value(deterministic);
+    w.key("total_time_s").value(total_s);
+    w.key("optimize").beginObject();
+    w.key("target_median_s").value(kOptimizeTargetS);
+    w.key("target_met").value(exact.time.median <= kOptimizeTargetS);
+    w.key("warmup");
+    writeRun(w, warmup);
+    w.key("timed");
+    writeSeries(w, exact);
+    w.endObject();
+    w.key("sweep").beginObject();
+    w.key("speeds").value(std::string(kSweepSpeeds));
+    w.key("jobs").value(1);
+    w.key("count").value(static_cast<int>(sweeps.size()));
+    w.key("median_s").value(sweep_time.median);
+    w.key("min_s").value(sweep_time.min);
+    w.key("max_s").value(sweep_time.max);
+    w.key("target_median_s").value(kSweepTargetS);
+    w.key("target_met").value(sweep_time.median <= kSweepTargetS);
+    w.key("optimal").value(first_sweep.optimal);
+    w.key("total").value(static_cast<int>(speeds.size()));
+    w.key("deterministic").value(sweep_deterministic);
+    w.key("wall_times_s").beginArray();
+    for (double t : sweep_times) w.value(t);
+    w.endArray();
+    w.key("points").beginArray();
+    for (std::size_t k = 0; k < first_sweep.speeds.size(); ++k) {
+      w.beginObject();
+      w.key("speed").value(first_sweep.speeds[k]);
+      w.key("status").value(first_sweep.status[k]);
+      w.key("criterion");
+      if (first_sweep.criterion[k]) w.value(*first_sweep.criterion[k]);
+      else w.null();
+      w.key("attempts").value(first_sweep.attempts[k]);
+      w.endObject();
+    }
+    w.endArray();
+    w.endObject();
+    w.key("peak_rss_mib").value(peak_rss_mib);
+    w.key("ipopt");
+    if (ipopt) {
+      w.beginObject();
+      w.key("run");
+      writeRun(w, *ipopt);
+      w.key("ratio_to_slsqp").value(ipopt->wall_s / exact.time.median);
+      w.endObject();
+    } else {
+      w.null();
+    }
+    w.key("finite_difference").beginObject();
+    w.key("timed");
+    writeSeries(w, fd);
+    w.key("ratio_to_exact").value(fd.time.median / exact.time.median);
+    w.endObject();
+    w.key("gradient_comparison").beginArray();
+    for (const GradientCase& gc : cases) {
+      w.beginObject();
+      w.key("config").value(gc.name);
+      w.key("exact");
+      writeSeries(w, gc.exact);
+      w.key("finite_difference");
+      writeSeries(w, gc.fd);
+      w.key("ratio_fd_to_exact").value(gc.fd.time.median / gc.exact.time.median);
+      w.endObject();
+    }
+    w.endArray();
+    w.endObject();
+    try {
+      writeFileAtomically(json_path, w.str() + "\n");
+    } catch (const std::exception& e) {
+      std::cerr << "bench_optimize: error: cannot write " << json_path << ": " << e.what() << "\n";
+      return 1;
+    }
+    std::printf("JSON written to %s\n", json_path.c_str());
+  }
+  return deterministic ? 0 : 1;
+}
