@@ -17,6 +17,9 @@ constexpr int kMaxExchangeRounds = 8;
 // Projections aim this far inside the lower levels (scaled units): a point on their boundary
 // (e.g. a DS with the minimum α range) is a poor start for the next stage.
 constexpr double kProjectionInterior = 0.05;
+// Full stage: strictly inside levels 0–4; the final polish also inside level 5, so that the
+// optimum satisfies the evaluator's strict g ≤ 0 everywhere.
+constexpr double kInterior = 1e-6;
 
 NlpSolution solve(NlpProblem& problem, const SolverSettings& s, const std::string& label,
                   std::ostream* log) {
@@ -69,8 +72,9 @@ int screenEntries(const GaitEvaluator& ev, const GaitEvaluation<double>& e, int 
 // Solves one stage with the exchange method; `build` adds the cost (and speed) to a problem.
 template <class Build>
 NlpSolution solveStage(GaitEvaluationCache& cache, const GaitParameters& start, int max_level,
-                       double interior, const SolverSettings& s, const std::string& label,
-                       std::ostream* log, OptimizationResult& result, const Build& build) {
+                       double interior, double level5_interior, const SolverSettings& s,
+                       const std::string& label, std::ostream* log, OptimizationResult& result,
+                       const Build& build) {
   const GaitEvaluator& ev = cache.evaluator();
   std::vector<int> entries;
   if (s.constraint_exchange)
@@ -82,7 +86,7 @@ NlpSolution solveStage(GaitEvaluationCache& cache, const GaitParameters& start, 
   for (int round = 0; round < kMaxExchangeRounds; ++round) {
     NlpProblem problem(gaitVariables(ev.model(), sol.x, ev.options().parameterisation));
     build(problem);
-    problem.addConstraints(makeHierarchyConstraints(cache, entries, interior));
+    problem.addConstraints(makeHierarchyConstraints(cache, entries, interior, level5_interior));
     const std::string name = label + " (" + std::to_string(entries.size()) + " grid entries)";
     const NlpSolution next = solve(problem, s, name, log);
     result.stages.push_back({name, next.status, next.iterations});
@@ -101,7 +105,7 @@ GaitParameters project(GaitEvaluationCache& cache, const GaitParameters& start, 
   // false), where SLSQP's backtracking on a huge cost measured unreliable.
   SolverSettings projection = s;
   projection.backend = Backend::Ipopt;
-  return solveStage(cache, start, max_level, kProjectionInterior, projection, label, log, result,
+  return solveStage(cache, start, max_level, kProjectionInterior, 0.0, projection, label, log, result,
                     [&](NlpProblem& problem) { problem.addCost(makeDistanceCost(start, cache.evaluator().options().parameterisation)); })
       .x;
 }
@@ -110,6 +114,26 @@ bool meetsAll(const GaitEvaluator& ev, const OptimizationRequest& req,
               const GaitEvaluation<double>& e) {
   return e.motion_computed && lowestViolatedLevel(ev, e, 5) < 0 &&
          (!req.speed || std::abs(e.speed - *req.speed) <= kFeasibilityTol);
+}
+
+// From an optimum, the same problem with every bound kInterior inside: a small continuation
+// step (it cannot jump to another local optimum) after which the evaluator's strict g ≤ 0
+// holds. Kept only if it converged, stays feasible and costs at most 1e-6 more.
+GaitParameters polish(GaitEvaluationCache& cache, const GaitParameters& p,
+                      const OptimizationRequest& req, double scale, std::ostream* log,
+                      OptimizationResult& r) {
+  const GaitEvaluator& ev = cache.evaluator();
+  const double before = criterionValue(cache.values(p), req.criterion);
+  const NlpSolution sol = solveStage(cache, p, 5, kInterior, kInterior, req.solver, "polish", log,
+                                     r, [&](NlpProblem& problem) {
+                                       problem.addCost(makeCriterionCost(cache, req.criterion, scale));
+                                       if (req.speed)
+                                         problem.addConstraints(makeSpeedConstraint(cache, *req.speed));
+                                     });
+  const GaitEvaluation<double>& e = cache.values(sol.x);
+  const bool better = sol.status == NlpStatus::Solved && meetsAll(ev, req, e) &&
+                      criterionValue(e, req.criterion) <= before * (1.0 + 1e-6);
+  return better ? GaitParameters(sol.x) : p;
 }
 
 void classify(const GaitEvaluator& ev, const OptimizationRequest& req, NlpStatus solver_status,
@@ -176,7 +200,7 @@ OptimizationResult optimizeGait(const GaitEvaluator& ev, const OptimizationReque
     for (int attempt = 0; attempt <= req.solver.max_restarts; ++attempt) {
       const std::string label = attempt == 0 ? "full" : "full restart " + std::to_string(attempt);
       const NlpSolution sol =
-          solveStage(cache, p, 5, 1e-6, settings, label, log, r, [&](NlpProblem& problem) {
+          solveStage(cache, p, 5, kInterior, 0.0, settings, label, log, r, [&](NlpProblem& problem) {
             problem.addCost(makeCriterionCost(cache, req.criterion, scale));
             if (req.speed) problem.addConstraints(makeSpeedConstraint(cache, *req.speed));
           });
@@ -191,6 +215,7 @@ OptimizationResult optimizeGait(const GaitEvaluator& ev, const OptimizationReque
       p = sol.x;
       if (status == NlpStatus::Solved && meetsAll(ev, req, cache.values(p))) break;
     }
+    if (status == NlpStatus::Solved) p = polish(cache, p, req, scale, log, r);
   }
   r.parameters = p;
   r.evaluation = ev.evaluate(p);

@@ -60,20 +60,20 @@ class DistanceCost : public CostTerm {
 class HierarchyConstraints : public ConstraintSet {
  public:
   HierarchyConstraints(GaitEvaluationCache& cache, const std::vector<int>& entries,
-                       double interior)
-      : cache_(cache), rows_(entries), interior_(interior) {
+                       double interior, double level5_interior)
+      : cache_(cache), rows_(entries), interior_(interior), level5_interior_(level5_interior) {
     const ConstraintLayout& layout = cache.evaluator().layout();
     for (int e : rows_) scales_.push_back(constraintScale(layout, cache.evaluator().model(), e));
   }
   std::string name() const override { return "hierarchy"; }
   int size() const override { return static_cast<int>(rows_.size()); }
   void bounds(Eigen::Ref<VectorX> lower, Eigen::Ref<VectorX> upper) const override {
+    // The evaluator fails levels 0–4 at g > 0, so the solver aims strictly inside them (its own
+    // feasibility tolerance would otherwise leave g ≈ +1e-7·scale); level 5 only when asked.
     lower.setConstant(-kInf);
     const ConstraintLayout& layout = cache_.evaluator().layout();
-    // Levels 0–4 condition the existence of the step: the evaluator fails them at g > 0, so
-    // the solver aims strictly inside them (its own tolerance would otherwise leave g ≈ +1e-9).
     for (int i = 0; i < size(); ++i)
-      upper(i) = layout.levelOf(rows_[i]) < 5 ? -interior_ : 0.0;
+      upper(i) = layout.levelOf(rows_[i]) < 5 ? -interior_ : -level5_interior_;
   }
   bool values(const VectorX& x, Eigen::Ref<VectorX> g) override {
     const GaitEvaluation<double>& e = cache_.values(toParameters(x));
@@ -97,7 +97,7 @@ class HierarchyConstraints : public ConstraintSet {
   GaitEvaluationCache& cache_;
   std::vector<int> rows_;
   std::vector<double> scales_;
-  double interior_;
+  double interior_, level5_interior_;
 };
 
 class SpeedConstraint : public ConstraintSet {
@@ -207,8 +207,8 @@ std::vector<int> hierarchyEntries(const ConstraintLayout& layout, int max_level)
 
 std::unique_ptr<ConstraintSet> makeHierarchyConstraints(GaitEvaluationCache& cache,
                                                         const std::vector<int>& entries,
-                                                        double interior) {
-  return std::make_unique<HierarchyConstraints>(cache, entries, interior);
+                                                        double interior, double level5_interior) {
+  return std::make_unique<HierarchyConstraints>(cache, entries, interior, level5_interior);
 }
 
 std::unique_ptr<ConstraintSet> makeSpeedConstraint(GaitEvaluationCache& cache, double speed) {

@@ -80,6 +80,7 @@ std::string readFile(const std::string& path) {
   return s.str();
 }
 
+// A hand-made defined step that violates level 5 (tests/test_gait_support.hpp: definedStep).
 const double kExampleValues[gaitopt::kNumGaitParameters] = {
     -0.044819, -2.593492, 1.520796, 0.35, -0.190837, -2.495513, 1.520796, -2.445513, 1.520796,
     0.0,       0.06,      -0.9,     0.3,  0.3,       0.3,       0.3,       0.12};
@@ -189,22 +190,37 @@ TEST_CASE("the shipped example gait file loads and defines a step", "[gait_io]")
   CHECK(fs::equivalent(g.robot_path, kRobot));
   CHECK(g.robot_path == fs::path(kRobot).lexically_normal().string());
   CHECK(g.robot.name == "rabbit_miossec");
-  for (int i = 0; i < gaitopt::kNumGaitParameters; ++i) {
-    INFO(gaitopt::kGaitParameterNames[i]);
-    CHECK(g.parameters(i) == kExampleValues[i]);
-  }
+  REQUIRE(g.parameters.size() == gaitopt::kNumGaitParameters);
   GaitOptions defaults;
   defaults.sample_rate = 1000.0;
+  defaults.target_speed = 0.5;  // written by gaitopt optimize from configs/default.yaml
   requireSameOptions(g.options, defaults);
   CHECK(g.model_options.rotor == gaitopt::RotorModel::Exact);
   CHECK(g.model_options.friction_smoothing == ModelOptions{}.friction_smoothing);
 
-  // As its comment says: defined (levels 0–4 hold) but level 5 violated.
+  // As its comment says: an optimised step on which every constraint holds strictly, at the
+  // speed it was optimised for.
   const gaitopt::GaitEvaluator ev(g.robot, g.options, g.model_options);
   const auto e = ev.evaluate(g.parameters);
   CHECK(e.defined());
   CHECK(e.motion_computed);
-  CHECK(e.failed_level == 5);
+  CHECK(e.failed_level == -1);
+  CHECK(e.speed == Approx(0.5).margin(1e-6));
+}
+
+TEST_CASE("gait files of a richer parameterisation round-trip", "[gait_io]") {
+  GaitOptions o;
+  o.parameterisation.ss_points = 3;
+  o.parameterisation.ds_points = 1;
+  GaitParameters p(o.parameterisation.size());
+  for (int i = 0; i < p.size(); ++i) p(i) = i < gaitopt::kNumGaitParameters ? kExampleValues[i] : 0.01 * i;
+  const std::string path = scratch().write(gaitopt::gaitYaml(kRobot, p, o, ModelOptions{}), "rich");
+  const GaitFile g = loadGaitFile(path);
+  CHECK(g.options.parameterisation == o.parameterisation);
+  REQUIRE(g.parameters.size() == p.size());
+  for (int i = 0; i < p.size(); ++i) CHECK(g.parameters(i) == p(i));
+  CHECK(readFile(path).find("delta1_ss25:") != std::string::npos);
+  CHECK(readFile(path).find("theta3_ds50:") != std::string::npos);
 }
 
 TEST_CASE("gaitYaml round-trips parameters and options bit for bit", "[gait_io]") {
@@ -368,7 +384,7 @@ TEST_CASE("gaitopt evaluate writes summary.json and trajectory.csv", "[gait_io]"
 
   const std::string summary = readFile(out + "/summary.json");
   CHECK_THAT(summary, Contains("\"status\": \"ok\""));
-  CHECK_THAT(summary, Contains("\"failed_level\": 5"));
+  CHECK_THAT(summary, Contains("\"failed_level\": null"));  // the shipped step is feasible
   CHECK_THAT(summary, Contains("\"C_Gamma\": "));
   CHECK_THAT(summary, Contains("\"name\": \"torque_envelope_ss\""));
   CHECK_THAT(summary, Contains("\"max_violation\": "));
@@ -433,9 +449,12 @@ TEST_CASE("gaitopt evaluate reports an undefined step with exit code 3", "[gait_
 }
 
 TEST_CASE("summary constraint groups: worst Defined value, counts and max_violation", "[gait_io]") {
+  // The hand-made step (defined, with level-5 violations) so that violated counts are > 0.
   const GaitFile g = loadGaitFile(kExample);
   const gaitopt::GaitEvaluator ev(g.robot, g.options, g.model_options);
-  const auto e = ev.evaluate(g.parameters);
+  GaitParameters violating(gaitopt::kNumGaitParameters);
+  for (int i = 0; i < gaitopt::kNumGaitParameters; ++i) violating(i) = kExampleValues[i];
+  const auto e = ev.evaluate(violating);
   double worst = 0.0;
   int violated = 0;
   for (const auto& group : ev.layout().groups()) {

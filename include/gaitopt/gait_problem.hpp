@@ -32,11 +32,12 @@ double constraintGroupScale(int group, const Model& model);
 double constraintScale(const ConstraintLayout& layout, const Model& model, int entry);
 // Layout entries of every level ≤ max_level.
 std::vector<int> hierarchyEntries(const ConstraintLayout& layout, int max_level);
-// The given layout entries as g / scale ≤ 0 for level 5 and ≤ −interior for levels 0–4, which
-// condition the existence of the step (the evaluator fails them at g > 0).
+// The given layout entries as g / scale ≤ −interior for levels 0–4 (the evaluator fails them
+// at g > 0) and ≤ −level5_interior for level 5.
 std::unique_ptr<ConstraintSet> makeHierarchyConstraints(GaitEvaluationCache& cache,
                                                         const std::vector<int>& entries,
-                                                        double interior = 1e-6);
+                                                        double interior = 1e-6,
+                                                        double level5_interior = 0.0);
 std::unique_ptr<ConstraintSet> makeSpeedConstraint(GaitEvaluationCache& cache, double speed);
 
 }  // namespace gaitopt
