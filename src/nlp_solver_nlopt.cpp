@@ -17,6 +17,21 @@ struct NloptContext {
   const NlpSettings& settings;
   int evaluations = 0;
   VectorX last_x;
+  double violation = 0.0;  // largest constraint violation at the last constraint evaluation
+  // The best point seen whose objective and constraints were both evaluated and whose largest
+  // violation is within the problem's tolerance (NLopt keeps only points feasible to its own,
+  // stricter test, so a run that ends oscillating could otherwise return its start).
+  VectorX last_f_x, best_x;
+  double last_f = 0.0, best_f = 0.0;
+  bool have_best = false;
+  void consider(const VectorX& x, double tol) {
+    if (x.size() == last_f_x.size() && x == last_f_x && violation <= tol &&
+        (!have_best || last_f < best_f)) {
+      best_x = x;
+      best_f = last_f;
+      have_best = true;
+    }
+  }
 };
 
 double objective(unsigned n, const double* x, double* grad, void* data) {
@@ -31,9 +46,11 @@ double objective(unsigned n, const double* x, double* grad, void* data) {
   if (grad) Eigen::Map<VectorX>(grad, n) = g;
   ++c->evaluations;
   c->last_x = v;
+  c->last_f_x = v;
+  c->last_f = f;
   if (c->settings.log && c->settings.print_every > 0 && c->evaluations % c->settings.print_every == 0)
     *c->settings.log << "[" << c->settings.label << "] eval " << c->evaluations << "  objective "
-                     << f << "\n";
+                     << f << "  violation " << c->violation << "\n";
   return f;
 }
 
@@ -86,10 +103,15 @@ void constraints(unsigned, double* result, unsigned n, const double* x, double* 
   };
   if (c->equalities) {
     for (int i : c->rows.equality_rows) put(i, 1.0, c->rows.upper(i));
+    for (int k = 0; k < out; ++k) c->base->violation = std::max(c->base->violation, std::abs(result[k]));
+    c->base->consider(v, 10.0 * c->base->settings.constraint_tol);
     return;
   }
   for (int i : c->rows.upper_rows) put(i, 1.0, c->rows.upper(i));
   for (int i : c->rows.lower_rows) put(i, -1.0, c->rows.lower(i));
+  c->base->violation = 0.0;
+  for (int k = 0; k < out; ++k) c->base->violation = std::max(c->base->violation, result[k]);
+  if (c->rows.equality_rows.empty()) c->base->consider(v, 10.0 * c->base->settings.constraint_tol);
 }
 
 }  // namespace
@@ -126,6 +148,12 @@ NlpSolution solveWithNlopt(NlpProblem& problem, const NlpSettings& settings, Nlo
     sol.status = NlpStatus::Failed;
     sol.x = Eigen::Map<const VectorX>(x.data(), n);
     sol.message = e.what();
+  }
+  // A better point seen on the way than the one NLopt returns.
+  double returned = 0.0;
+  if (ctx.have_best && (!problem.cost(sol.x, returned) || ctx.best_f < returned)) {
+    sol.x = ctx.best_x;
+    f = ctx.best_f;
   }
   // SLSQP may end on a refused (undefined) trial point: fall back to the last defined one.
   double check = 0.0;

@@ -57,6 +57,7 @@ int integerOr(const YamlMap& m, const std::string& key, int minimum, int fallbac
 const std::array<const char*, 3> kCriteria = {"C_Gamma", "C_E", "W"};
 const std::array<const char*, 3> kBackends = {"nlopt_slsqp", "ipopt", "nlopt_cobyla"};
 const std::array<const char*, 2> kHierarchies = {"staged", "direct"};
+const std::array<const char*, 2> kGradientModes = {"exact", "finite_difference"};
 const std::array<const char*, 1> kParameterisations = {"miossec"};
 
 // `file` resolved against the config file's directory (an absolute path stays as is).
@@ -93,6 +94,8 @@ SolverSettings parseSolver(const YamlMap& m) {
     s.tol = *tol;
   }
   if (m.has("constraint_exchange")) s.constraint_exchange = m.boolean("constraint_exchange");
+  s.gradients = choice(m, "gradients", kGradientModes, 0) == 1 ? GradientMode::FiniteDifference
+                                                               : GradientMode::Exact;
   s.print_every = integerOr(m, "print_every", 0, s.print_every);
   if (const std::optional<YamlMap> ipopt = m.optionalMap("ipopt")) {
     s.ipopt_options = ipopt->scalarEntries();

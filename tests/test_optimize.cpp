@@ -282,6 +282,25 @@ TEST_CASE("optimize: configuration keys, defaults and pass-through Ipopt options
   CHECK(minimal.solver.backend == gaitopt::Backend::NloptSlsqp);
   CHECK(minimal.solver.max_iter == gaitopt::SolverSettings{}.max_iter);
   CHECK(minimal.solver.constraint_exchange == gaitopt::SolverSettings{}.constraint_exchange);
+  CHECK(minimal.solver.gradients == gaitopt::GradientMode::Exact);
+  CHECK(minimal.options.parameterisation.isThesis());
+
+  // Finite-difference gradients (for comparison) and a richer parameterisation.
+  const OptimizeConfig fd = gaitopt::loadOptimizeConfig(scratch().write(
+      "robot: " + kRobot + "\nparameterisation: {ss_points: 3, ds_points: 2}\n"
+      "solver: {gradients: finite_difference}"));
+  CHECK(fd.solver.gradients == gaitopt::GradientMode::FiniteDifference);
+  CHECK(fd.options.parameterisation.ss_points == 3);
+  CHECK(fd.options.parameterisation.ds_points == 2);
+  CHECK(fd.parameterisation == "miossec+ss3+ds2");
+  // The default guess is refined into the richer parameterisation with the same motion.
+  const GaitEvaluator fine(fd.robot, fd.options, fd.model_options);
+  const GaitParameters start = gaitopt::configuredInitialGuess(fd, fine.model());
+  REQUIRE(start.size() == 17 + 8 + 4);
+  const GaitEvaluator coarse(fd.robot, gaitopt::GaitOptions{}, fd.model_options);
+  CHECK(fine.evaluate(start).C_Gamma ==
+        Approx(coarse.evaluate(gaitopt::defaultInitialGuess(coarse.model(), std::nullopt)).C_Gamma)
+            .epsilon(1e-9));
 
   // Other criteria and backends; an initial guess from a gait file (relative to the config).
   const std::string gait = sourceFile("configs/gait/default_step.yaml");
@@ -318,6 +337,10 @@ TEST_CASE("optimize: bad configurations name the file, the key and its line", "[
   requireError(configWith({{13, "  tol: -1e-8"}}), "solver.tol", 13, "must be > 0");
   requireError(configWith({{14, "  constraint_exchange: maybe"}}), "solver.constraint_exchange",
                14, "true or false");
+  requireError(configWith({{14, "  gradients: numerical"}}), "solver.gradients", 14,
+               "finite_difference");
+  requireError(configWith({{7, "parameterisation: {ss_points: 2}"}}), "parameterisation.ss_points",
+               7, "must be odd");
   requireError(configWith({{15, "  print_every: -1"}}), "solver.print_every", 15,
                "integer >= 0");
   requireError(configWith({{16, "  ipopt: {no_such_option: 1}"}, {17, "#"}, {18, "#"}}),
