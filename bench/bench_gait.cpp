@@ -27,7 +27,6 @@
 #include <vector>
 
 #include "bench_timing.hpp"
-#include "gaitopt/atomic_file.hpp"
 #include "gaitopt/gait_evaluator.hpp"
 #include "gaitopt/gait_parameters.hpp"
 #include "gaitopt/json_writer.hpp"
@@ -120,41 +119,12 @@ struct Measured {
   Stats evaluate, gradient;
 };
 
-void usage(std::ostream& out) {
-  out << "usage: bench_gait [--json FILE] [--batch N] [--repeats N]\n"
-         "  --json FILE   also write the results as JSON to FILE\n"
-         "  --batch N     calls per timed batch (default 10)\n"
-         "  --repeats N   timed batches per measurement (default 51; >= 31 recommended)\n";
-}
-
-const char* verdict(double median_ns, double target_ns) {
-  return median_ns <= target_ns ? "met" : "MISSED";
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string json_path;
-  int batch = 10;
-  int repeats = 51;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--help" || arg == "-h") {
-      usage(std::cout);
-      return 0;
-    } else if (arg == "--json" && has_value) {
-      json_path = argv[++i];
-    } else if (arg == "--batch" && has_value && parsePositive(argv[i + 1], batch)) {
-      ++i;
-    } else if (arg == "--repeats" && has_value && parsePositive(argv[i + 1], repeats)) {
-      ++i;
-    } else {
-      std::cerr << "bench_gait: bad argument '" << arg << "'\n";
-      usage(std::cerr);
-      return 2;
-    }
-  }
+  BatchOptions opts;
+  if (const auto status = parseBatchOptions(argc, argv, "bench_gait", 10, opts)) return *status;
+  const int batch = opts.batch, repeats = opts.repeats;
 
   std::optional<GaitEvaluator> evaluator;
   try {
@@ -166,12 +136,9 @@ int main(int argc, char** argv) {
   const GaitEvaluator& ev = *evaluator;
   std::string step_note;
   const std::vector<StepSet> sets = stepSets(step_note);
-  const std::string date = utcNow();
-  const std::string cpu = cpuModel();
+  const Environment env;
 
-  std::printf("bench_gait  %s\n", date.c_str());
-  std::printf("cpu:       %s\n", cpu.c_str());
-  std::printf("compiler:  %s (%s)\n", kCompiler, kBuildFlags);
+  printEnvironment("bench_gait", env);
   std::printf("robot:     %s\n", kRobotFile);
   std::printf("options:   default GaitOptions (ss_nodes %d, ds_nodes %d, %zu constraints)\n",
               ev.options().ss_nodes, ev.options().ds_nodes,
@@ -224,13 +191,10 @@ int main(int argc, char** argv) {
                 m.failed_level, m.motion_computed ? "yes" : "no", m.C_Gamma);
   std::printf("\n\n(sink %g)\n", static_cast<double>(g_sink));
 
-  if (!json_path.empty()) {
+  if (!opts.json_path.empty()) {
     JsonWriter w;
     w.beginObject();
-    w.key("benchmark").value("bench_gait");
-    w.key("date").value(date);
-    w.key("cpu").value(cpu);
-    w.key("compiler").value(std::string(kCompiler));
+    writeEnvironment(w, "bench_gait", env);
     w.key("robot").value(std::string(kRobotFile));
     w.key("ss_nodes").value(ev.options().ss_nodes);
     w.key("ds_nodes").value(ev.options().ds_nodes);
@@ -246,12 +210,7 @@ int main(int argc, char** argv) {
         w.key("step_source").value(m.set.source);
         w.key("parameters").value(m.set.p);
         w.key("failed_level").value(m.failed_level);
-        w.key("name").value(s.name);
-        w.key("description").value(s.description);
-        w.key("median_ns").value(s.median_ns);
-        w.key("min_ns").value(s.min_ns);
-        w.key("p90_ns").value(s.p90_ns);
-        w.key("mean_ns").value(s.mean_ns);
+        writeStatsFields(w, s);
         w.key("target_ns").value(target_ns);
         w.key("target_met").value(s.median_ns <= target_ns);
         w.endObject();
@@ -261,13 +220,7 @@ int main(int argc, char** argv) {
     }
     w.endArray();
     w.endObject();
-    try {
-      writeFileAtomically(json_path, w.str() + "\n");
-    } catch (const std::exception& e) {
-      std::cerr << "bench_gait: error: cannot write " << json_path << ": " << e.what() << "\n";
-      return 1;
-    }
-    std::printf("JSON written to %s\n", json_path.c_str());
+    if (!writeJsonReport("bench_gait", opts.json_path, w)) return 1;
   }
   return 0;
 }

@@ -20,7 +20,6 @@
 #include <vector>
 
 #include "bench_timing.hpp"
-#include "gaitopt/atomic_file.hpp"
 #include "gaitopt/config_error.hpp"
 #include "gaitopt/dynamics_pinned.hpp"
 #include "gaitopt/inverse_dynamics.hpp"
@@ -94,37 +93,13 @@ double callInverseDynamicsDerivatives(const Model& m, const State& s) {
   return d.value.gamma_star(1) + d.dgamma_star(2, 7) + d.dR1(1, 11);
 }
 
-void usage(std::ostream& out) {
-  out << "usage: bench_model [--json FILE] [--batch N] [--repeats N]\n"
-         "  --json FILE   also write the results as JSON to FILE\n"
-         "  --batch N     calls per timed batch (default 10000)\n"
-         "  --repeats N   timed batches per measurement (default 51; >= 31 recommended)\n";
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string json_path;
-  int batch = 10000;
-  int repeats = 51;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--help" || arg == "-h") {
-      usage(std::cout);
-      return 0;
-    } else if (arg == "--json" && has_value) {
-      json_path = argv[++i];
-    } else if (arg == "--batch" && has_value && parsePositive(argv[i + 1], batch)) {
-      ++i;
-    } else if (arg == "--repeats" && has_value && parsePositive(argv[i + 1], repeats)) {
-      ++i;
-    } else {
-      std::cerr << "bench_model: bad argument '" << arg << "'\n";
-      usage(std::cerr);
-      return 2;
-    }
-  }
+  BatchOptions opts;
+  if (const auto status = parseBatchOptions(argc, argv, "bench_model", 10000, opts))
+    return *status;
+  const int batch = opts.batch, repeats = opts.repeats;
 
   Model model;
   try {
@@ -134,12 +109,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::vector<State> states = makeStates(kStateCount, kSeed);
-  const std::string date = utcNow();
-  const std::string cpu = cpuModel();
+  const Environment env;
 
-  std::printf("bench_model  %s\n", date.c_str());
-  std::printf("cpu:       %s\n", cpu.c_str());
-  std::printf("compiler:  %s (%s)\n", kCompiler, kBuildFlags);
+  printEnvironment("bench_model", env);
   std::printf("robot:     %s\n", kRobotFile);
   std::printf("states:    %zu seeded random states (seed %u), cycled\n", states.size(), kSeed);
   std::printf("timing:    %d batches of %d calls (+1 warm-up batch), steady_clock\n", repeats,
@@ -168,13 +140,10 @@ int main(int argc, char** argv) {
   }
   std::printf("\n(sink %g)\n", static_cast<double>(g_sink));
 
-  if (!json_path.empty()) {
+  if (!opts.json_path.empty()) {
     JsonWriter w;
     w.beginObject();
-    w.key("benchmark").value("bench_model");
-    w.key("date").value(date);
-    w.key("cpu").value(cpu);
-    w.key("compiler").value(std::string(kCompiler));
+    writeEnvironment(w, "bench_model", env);
     w.key("robot").value(std::string(kRobotFile));
     w.key("states").value(static_cast<int>(states.size()));
     w.key("seed").value(static_cast<int>(kSeed));
@@ -185,23 +154,12 @@ int main(int argc, char** argv) {
     w.key("results").beginArray();
     for (const Stats& s : results) {
       w.beginObject();
-      w.key("name").value(s.name);
-      w.key("description").value(s.description);
-      w.key("median_ns").value(s.median_ns);
-      w.key("min_ns").value(s.min_ns);
-      w.key("p90_ns").value(s.p90_ns);
-      w.key("mean_ns").value(s.mean_ns);
+      writeStatsFields(w, s);
       w.endObject();
     }
     w.endArray();
     w.endObject();
-    try {
-      writeFileAtomically(json_path, w.str() + "\n");
-    } catch (const std::exception& e) {
-      std::cerr << "bench_model: error: cannot write " << json_path << ": " << e.what() << "\n";
-      return 1;
-    }
-    std::printf("JSON written to %s\n", json_path.c_str());
+    if (!writeJsonReport("bench_model", opts.json_path, w)) return 1;
   }
   return 0;
 }

@@ -26,9 +26,7 @@
 // JSON file cannot be written), 2 for bad arguments or unreadable configurations.
 #include <sys/resource.h>
 
-#include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -37,7 +35,6 @@
 #include <vector>
 
 #include "bench_timing.hpp"
-#include "gaitopt/atomic_file.hpp"
 #include "gaitopt/gait_evaluator.hpp"
 #include "gaitopt/gait_optimizer.hpp"
 #include "gaitopt/json_writer.hpp"
@@ -56,23 +53,6 @@ constexpr double kSweepTargetS = 3.0;
 
 double secondsSince(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-struct TimeStats {
-  double median = 0.0, min = 0.0, p90 = 0.0, max = 0.0;
-};
-
-TimeStats timeStats(std::vector<double> t) {
-  TimeStats s;
-  if (t.empty()) return s;
-  std::sort(t.begin(), t.end());
-  const std::size_t n = t.size();
-  s.min = t.front();
-  s.max = t.back();
-  s.median = n % 2 == 1 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
-  const std::size_t rank = static_cast<std::size_t>(std::ceil(0.9 * static_cast<double>(n)));
-  s.p90 = t[std::max<std::size_t>(rank, 1) - 1];  // nearest rank
-  return s;
 }
 
 // The criterion of a run, when its step is defined and its motion computed.
@@ -113,7 +93,7 @@ bool sameOutcome(const Run& a, const Run& b) {
 
 struct Series {
   std::vector<Run> runs;
-  TimeStats time;
+  SampleStats time;
   bool deterministic = true;
 };
 
@@ -125,7 +105,7 @@ Series repeat(const GaitEvaluator& ev, const OptimizationRequest& req, Criterion
     times.push_back(s.runs.back().wall_s);
     if (!sameOutcome(s.runs.back(), s.runs.front())) s.deterministic = false;
   }
-  s.time = timeStats(times);
+  s.time = sampleStats(times);
   return s;
 }
 
@@ -135,8 +115,6 @@ std::string criterionText(const std::optional<double>& v) {
   std::snprintf(buf, sizeof buf, "%.10g", *v);
   return buf;
 }
-
-const char* verdict(double value, double target) { return value <= target ? "met" : "MISSED"; }
 
 // One configuration of the gradient comparison (f).
 struct GradientCase {
@@ -255,14 +233,11 @@ int main(int argc, char** argv) {
   const Criterion criterion = config->criterion;
   const OptimizationRequest request =
       optimizationRequest(*config, configuredInitialGuess(*config, ev.model()));
-  const std::string date = utcNow();
-  const std::string cpu = cpuModel();
+  const Environment env;
   const Clock::time_point start = Clock::now();
   bool deterministic = true;
 
-  std::printf("bench_optimize  %s\n", date.c_str());
-  std::printf("cpu:       %s\n", cpu.c_str());
-  std::printf("compiler:  %s (%s)\n", kCompiler, kBuildFlags);
+  printEnvironment("bench_optimize", env);
   std::printf("config:    %s (robot %s, criterion %s, speed %s m/s, backend %s, hierarchy %s, "
               "constraint_exchange %s)\n\n",
               default_path.c_str(), config->robot_path.c_str(), criterionName(criterion),
@@ -319,7 +294,7 @@ int main(int argc, char** argv) {
   deterministic = deterministic && sweep_deterministic;
   std::vector<double> sweep_times;
   for (const SweepRun& s : sweeps) sweep_times.push_back(s.wall_s);
-  const TimeStats sweep_time = timeStats(sweep_times);
+  const SampleStats sweep_time = sampleStats(sweep_times);
   const SweepRun& first_sweep = sweeps.front();
   for (std::size_t k = 0; k < first_sweep.speeds.size(); ++k)
     std::printf("    v=%.3f m/s  %-10s  C_Gamma %-16s  %d attempt%s\n", first_sweep.speeds[k],
@@ -412,10 +387,7 @@ int main(int argc, char** argv) {
   if (!json_path.empty()) {
     JsonWriter w;
     w.beginObject();
-    w.key("benchmark").value("bench_optimize");
-    w.key("date").value(date);
-    w.key("cpu").value(cpu);
-    w.key("compiler").value(std::string(kCompiler));
+    writeEnvironment(w, "bench_optimize", env);
     w.key("build").value(std::string(kBuildFlags));
     w.key("config").value(default_path);
     w.key("criterion").value(criterionName(criterion));
@@ -486,13 +458,7 @@ int main(int argc, char** argv) {
     }
     w.endArray();
     w.endObject();
-    try {
-      writeFileAtomically(json_path, w.str() + "\n");
-    } catch (const std::exception& e) {
-      std::cerr << "bench_optimize: error: cannot write " << json_path << ": " << e.what() << "\n";
-      return 1;
-    }
-    std::printf("JSON written to %s\n", json_path.c_str());
+    if (!writeJsonReport("bench_optimize", json_path, w)) return 1;
   }
   return deterministic ? 0 : 1;
 }

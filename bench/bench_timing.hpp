@@ -1,16 +1,26 @@
 #pragma once
 // Shared timing helpers of the benchmarks (bench_*.cpp): repeated timed batches with a warm-up,
-// per-call median / min / p90, a dead-code-elimination barrier, and the environment strings
-// every report carries (CPU, compiler, build flags, UTC date).
+// per-call median / min / p90, a dead-code-elimination barrier, the environment every report
+// carries (CPU, compiler, build flags, UTC date), the common command line of the batch
+// benchmarks and the JSON report file.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <exception>
 #include <fstream>
+#include <iostream>
+#include <optional>
+#include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "gaitopt/atomic_file.hpp"
+#include "gaitopt/json_writer.hpp"
 
 namespace gaitopt::bench {
 
@@ -35,6 +45,33 @@ template <class T> inline void escape(const T& value) {
   asm volatile("" : : "g"(&value) : "memory");
 }
 
+// Order statistics of a sample (all zero for an empty one).
+struct SampleStats {
+  double median = 0.0, min = 0.0, p90 = 0.0, max = 0.0, mean = 0.0;
+};
+
+inline SampleStats sampleStats(std::vector<double> values) {
+  SampleStats s;
+  if (values.empty()) return s;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  s.min = values.front();
+  s.max = values.back();
+  s.median = n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+  // Nearest-rank 90th percentile.
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(0.9 * static_cast<double>(n)));
+  s.p90 = values[std::max<std::size_t>(rank, 1) - 1];
+  double sum = 0.0;
+  for (double v : values) sum += v;
+  s.mean = sum / static_cast<double>(n);
+  return s;
+}
+
+// "met" when `value` is within `target` (at most), "MISSED" otherwise.
+inline const char* verdict(double value, double target) {
+  return value <= target ? "met" : "MISSED";
+}
+
 struct Stats {
   std::string name;
   std::string description;
@@ -57,20 +94,25 @@ Stats measure(const std::string& name, const std::string& description, int batch
     if (r == 0) continue;  // warm-up
     per_call.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count() / batch);
   }
-  std::sort(per_call.begin(), per_call.end());
-  const std::size_t n = per_call.size();
+  const SampleStats t = sampleStats(std::move(per_call));
   Stats s;
   s.name = name;
   s.description = description;
-  s.min_ns = per_call.front();
-  s.median_ns = n % 2 == 1 ? per_call[n / 2] : 0.5 * (per_call[n / 2 - 1] + per_call[n / 2]);
-  // Nearest-rank 90th percentile.
-  const std::size_t rank = static_cast<std::size_t>(std::ceil(0.9 * static_cast<double>(n)));
-  s.p90_ns = per_call[std::max<std::size_t>(rank, 1) - 1];
-  double sum = 0.0;
-  for (double t : per_call) sum += t;
-  s.mean_ns = sum / static_cast<double>(n);
+  s.min_ns = t.min;
+  s.median_ns = t.median;
+  s.p90_ns = t.p90;
+  s.mean_ns = t.mean;
   return s;
+}
+
+// The fields of `s` (name, description, median, min, p90, mean) in the object being written.
+inline void writeStatsFields(JsonWriter& w, const Stats& s) {
+  w.key("name").value(s.name);
+  w.key("description").value(s.description);
+  w.key("median_ns").value(s.median_ns);
+  w.key("min_ns").value(s.min_ns);
+  w.key("p90_ns").value(s.p90_ns);
+  w.key("mean_ns").value(s.mean_ns);
 }
 
 inline std::string cpuModel() {
@@ -106,6 +148,81 @@ inline bool parsePositive(const char* text, int& out) {
   if (end == text || *end != '\0' || v < 1 || v > 100000000) return false;
   out = static_cast<int>(v);
   return true;
+}
+
+// The UTC date and the CPU a report names, read when the benchmark starts.
+struct Environment {
+  std::string date = utcNow();
+  std::string cpu = cpuModel();
+};
+
+// The first lines of a printed report: benchmark and date, CPU, compiler and build flags.
+inline void printEnvironment(const char* benchmark, const Environment& env) {
+  std::printf("%s  %s\n", benchmark, env.date.c_str());
+  std::printf("cpu:       %s\n", env.cpu.c_str());
+  std::printf("compiler:  %s (%s)\n", kCompiler, kBuildFlags);
+}
+
+// The first members of a JSON report: benchmark, date, cpu, compiler.
+inline void writeEnvironment(JsonWriter& w, const char* benchmark, const Environment& env) {
+  w.key("benchmark").value(benchmark);
+  w.key("date").value(env.date);
+  w.key("cpu").value(env.cpu);
+  w.key("compiler").value(std::string(kCompiler));
+}
+
+// Writes the JSON report `w` to `path` and says so; false (after a message on standard error)
+// when the file cannot be written.
+inline bool writeJsonReport(const char* benchmark, const std::string& path, const JsonWriter& w) {
+  try {
+    writeFileAtomically(path, w.str() + "\n");
+  } catch (const std::exception& e) {
+    std::cerr << benchmark << ": error: cannot write " << path << ": " << e.what() << "\n";
+    return false;
+  }
+  std::printf("JSON written to %s\n", path.c_str());
+  return true;
+}
+
+// The command line of the batch benchmarks: [--json FILE] [--batch N] [--repeats N] [--help].
+struct BatchOptions {
+  std::string json_path;
+  int batch = 0;
+  int repeats = 51;
+};
+
+inline void batchUsage(std::ostream& out, const char* benchmark, int default_batch) {
+  out << "usage: " << benchmark << " [--json FILE] [--batch N] [--repeats N]\n"
+      << "  --json FILE   also write the results as JSON to FILE\n"
+      << "  --batch N     calls per timed batch (default " << default_batch << ")\n"
+      << "  --repeats N   timed batches per measurement (default 51; >= 31 recommended)\n";
+}
+
+// Parses the batch benchmark's command line into `options` (whose batch starts at
+// `default_batch`). Returns the exit status when the program is to stop at once: 0 after
+// --help (usage on standard output), 2 for a bad argument (usage on standard error).
+inline std::optional<int> parseBatchOptions(int argc, char** argv, const char* benchmark,
+                                            int default_batch, BatchOptions& options) {
+  options.batch = default_batch;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (arg == "--help" || arg == "-h") {
+      batchUsage(std::cout, benchmark, default_batch);
+      return 0;
+    } else if (arg == "--json" && has_value) {
+      options.json_path = argv[++i];
+    } else if (arg == "--batch" && has_value && parsePositive(argv[i + 1], options.batch)) {
+      ++i;
+    } else if (arg == "--repeats" && has_value && parsePositive(argv[i + 1], options.repeats)) {
+      ++i;
+    } else {
+      std::cerr << benchmark << ": bad argument '" << arg << "'\n";
+      batchUsage(std::cerr, benchmark, default_batch);
+      return 2;
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace gaitopt::bench

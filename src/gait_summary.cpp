@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace gaitopt {
 
@@ -171,19 +172,16 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
   w.key("friction_smoothing").value(mo.friction_smoothing);
   w.endObject();
 
+  static constexpr std::pair<const char*, const char*> kUnits[] = {
+      {"C_Gamma", "N^2 m s (integral of Gamma*^T Gamma* dt per metre walked)"},
+      {"C_E", "J/m"}, {"W", "J/m"}, {"C_frott", "J/m"}, {"speed", "m/s"}, {"step_length", "m"},
+      {"T_SS", "s"}, {"T_DS", "s"}, {"alphadot_fSS", "rad/s"},
+      {"ds_switch_times", "s from the start of double support"},
+      {"parameters", "rad, m, s; delta*s_* are d(delta)/d(alpha), alphadot_iSS rad/s"},
+      {"constraints", "per group, see 'unit'; satisfied when value <= 0"},
+  };
   w.key("units").beginObject();
-  w.key("C_Gamma").value("N^2 m s (integral of Gamma*^T Gamma* dt per metre walked)");
-  w.key("C_E").value("J/m");
-  w.key("W").value("J/m");
-  w.key("C_frott").value("J/m");
-  w.key("speed").value("m/s");
-  w.key("step_length").value("m");
-  w.key("T_SS").value("s");
-  w.key("T_DS").value("s");
-  w.key("alphadot_fSS").value("rad/s");
-  w.key("ds_switch_times").value("s from the start of double support");
-  w.key("parameters").value("rad, m, s; delta*s_* are d(delta)/d(alpha), alphadot_iSS rad/s");
-  w.key("constraints").value("per group, see 'unit'; satisfied when value <= 0");
+  for (const auto& [key, unit] : kUnits) w.key(key).value(unit);
   w.endObject();
 }
 

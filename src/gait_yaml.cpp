@@ -2,8 +2,6 @@
 
 #include <array>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "gaitopt/json_writer.hpp"
@@ -13,39 +11,31 @@ namespace gaitopt {
 
 namespace {
 
-namespace fs = std::filesystem;
-
 // Chebyshev grids of more than 512 intervals cost far more than they gain (the phase
 // integrands are smooth) and would make the constraint vector huge.
 constexpr int kMaxNodes = 512;
 // A step lasts about a second; 100 kHz already gives ~10^5 rows per file.
 constexpr double kMaxSampleRate = 1e5;
 
-std::string show(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
 // Each reader returns `fallback` when the key is absent and range-checks a present value.
 double positiveOr(const YamlMap& m, const std::string& key, double fallback) {
   const std::optional<double> v = m.optionalNumber(key);
   if (!v) return fallback;
-  if (!(*v > 0.0)) throw m.error(key, "must be > 0, got " + show(*v));
+  if (!(*v > 0.0)) throw m.error(key, "must be > 0, got " + showNumber(*v));
   return *v;
 }
 
 double nonNegativeOr(const YamlMap& m, const std::string& key, double fallback) {
   const std::optional<double> v = m.optionalNumber(key);
   if (!v) return fallback;
-  if (*v < 0.0) throw m.error(key, "must be >= 0, got " + show(*v));
+  if (*v < 0.0) throw m.error(key, "must be >= 0, got " + showNumber(*v));
   return *v;
 }
 
 double negativeOr(const YamlMap& m, const std::string& key, double fallback) {
   const std::optional<double> v = m.optionalNumber(key);
   if (!v) return fallback;
-  if (!(*v < 0.0)) throw m.error(key, "must be < 0, got " + show(*v));
+  if (!(*v < 0.0)) throw m.error(key, "must be < 0, got " + showNumber(*v));
   return *v;
 }
 
@@ -54,7 +44,7 @@ int nodesOr(const YamlMap& m, const std::string& key, int fallback) {
   if (!v) return fallback;
   if (std::floor(*v) != *v || *v < 2.0 || *v > kMaxNodes) {
     throw m.error(key, "must be an integer from 2 to " + std::to_string(kMaxNodes) + ", got " +
-                           show(*v));
+                           showNumber(*v));
   }
   return static_cast<int>(*v);
 }
@@ -66,25 +56,11 @@ bool booleanOr(const YamlMap& m, const std::string& key, bool fallback) {
 // A string option restricted to `choices`; returns the index of the value, or -1 if absent.
 template <std::size_t N>
 int choiceOr(const YamlMap& m, const std::string& key, const std::array<const char*, N>& choices) {
-  if (!m.has(key)) return -1;
-  const std::string v = m.string(key);
-  std::string list;
-  for (std::size_t i = 0; i < N; ++i) {
-    if (v == choices[i]) return static_cast<int>(i);
-    list += (i == 0 ? "'" : ", '") + std::string(choices[i]) + "'";
-  }
-  throw m.error(key, "expected one of " + list + ", got '" + v + "'");
+  return m.has(key) ? choiceIndex(m, key, choices) : -1;
 }
 
 const std::array<const char*, 2> kDsDistributions = {"torque", "energy"};
 const std::array<const char*, 2> kRotorModels = {"exact", "high_gear"};
-
-// Robot path resolved against the gait file's directory (an absolute path stays as is).
-std::string resolveRobotPath(const std::string& gait_path, const std::string& robot) {
-  const fs::path r(robot);
-  if (r.is_absolute()) return r.lexically_normal().string();
-  return (fs::path(gait_path).parent_path() / r).lexically_normal().string();
-}
 
 // Plain YAML scalar when it is obviously safe (a path of letters, digits, '_', '-', '.',
 // '/', not starting with '-'), else a double-quoted one.
@@ -121,7 +97,7 @@ Parameterisation parseParameterisation(const YamlMap& doc) {
     if (!v) return fallback;
     if (*v != std::floor(*v) || *v < 0 || *v > kMaxGaitParameters)
       throw m.error(key, "must be a whole number from 0 to " + std::to_string(kMaxGaitParameters) +
-                             ", got " + show(*v));
+                             ", got " + showNumber(*v));
     return static_cast<int>(*v);
   };
   par.ss_points = count("ss_points", 1);
@@ -143,7 +119,7 @@ GaitParameters parseGaitParameters(const YamlMap& m, const Parameterisation& par
   // Implicit requirements of the parametrisation (digest §3.5 [G]): a forward step and a
   // double support of positive duration (the DS α(t) cubic is singular at T_DS = 0).
   for (int i : {static_cast<int>(kStepLength), static_cast<int>(kTDS)}) {
-    if (!(p(i) > 0.0)) throw m.error(names[i], "must be > 0, got " + show(p(i)));
+    if (!(p(i) > 0.0)) throw m.error(names[i], "must be > 0, got " + showNumber(p(i)));
   }
   m.rejectUnknownKeys();
   return p;
@@ -160,8 +136,8 @@ GaitOptions parseGaitOptions(const YamlMap& m, ModelOptions& model_options) {
   }
   o.sample_rate = positiveOr(m, "sample_rate", o.sample_rate);
   if (o.sample_rate > kMaxSampleRate) {
-    throw m.error("sample_rate", "must be at most " + show(kMaxSampleRate) + " Hz, got " +
-                                     show(o.sample_rate));
+    throw m.error("sample_rate", "must be at most " + showNumber(kMaxSampleRate) + " Hz, got " +
+                                     showNumber(o.sample_rate));
   }
   o.ss_nodes = nodesOr(m, "ss_nodes", o.ss_nodes);
   o.ds_nodes = nodesOr(m, "ds_nodes", o.ds_nodes);
@@ -190,7 +166,7 @@ GaitFile loadGaitFile(const std::string& path) {
   const YamlMap doc(loadYamlFile(path), path, "");
   const std::string robot = doc.string("robot");
   if (robot.empty()) throw doc.error("robot", "must name the robot description file");
-  g.robot_path = resolveRobotPath(path, robot);
+  g.robot_path = resolveAgainstFile(path, robot);  // against the gait file's directory
   const Parameterisation par = parseParameterisation(doc);
   g.parameters = parseGaitParameters(doc.map("parameters"), par);
   if (const std::optional<YamlMap> options = doc.optionalMap("options")) {
@@ -199,13 +175,7 @@ GaitFile loadGaitFile(const std::string& path) {
   g.options.parameterisation = par;
   doc.rejectUnknownKeys();
 
-  std::error_code ec;
-  const std::string where = "robot file '" + g.robot_path + "' (from '" + robot +
-                            "', relative to the gait file's directory)";
-  if (!fs::is_regular_file(g.robot_path, ec)) {
-    throw doc.error("robot", where + " does not exist or is not a regular file");
-  }
-  if (!std::ifstream(g.robot_path)) throw doc.error("robot", where + " cannot be read");
+  requireReadableFile(doc, "robot", "robot file", g.robot_path, robot, "gait file");
   g.robot = loadRobot(g.robot_path);  // errors inside the robot file name that file
   return g;
 }

@@ -4,9 +4,6 @@
 
 #include <array>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "gaitopt/gait_yaml.hpp"
 #include "gaitopt/initial_guess.hpp"
@@ -18,14 +15,6 @@ namespace gaitopt {
 
 namespace {
 
-namespace fs = std::filesystem;
-
-std::string show(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
 // A string restricted to `choices`: the index of the value, or `fallback` when absent.
 template <std::size_t N>
 int choice(const YamlMap& m, const std::string& key, const std::array<const char*, N>& choices,
@@ -34,13 +23,7 @@ int choice(const YamlMap& m, const std::string& key, const std::array<const char
     m.optionalNumber(key);  // absent: only records the key as known
     return fallback;
   }
-  const std::string v = m.string(key);
-  std::string list;
-  for (std::size_t i = 0; i < N; ++i) {
-    if (v == choices[i]) return static_cast<int>(i);
-    list += (i == 0 ? "'" : ", '") + std::string(choices[i]) + "'";
-  }
-  throw m.error(key, "expected one of " + list + ", got '" + v + "'");
+  return choiceIndex(m, key, choices);
 }
 
 // An integer >= minimum, or `fallback` when absent.
@@ -48,7 +31,8 @@ int integerOr(const YamlMap& m, const std::string& key, int minimum, int fallbac
   const std::optional<double> v = m.optionalNumber(key);
   if (!v) return fallback;
   if (std::floor(*v) != *v || *v < minimum || *v > 1e9) {
-    throw m.error(key, "must be an integer >= " + std::to_string(minimum) + ", got " + show(*v));
+    throw m.error(key, "must be an integer >= " + std::to_string(minimum) + ", got " +
+                           showNumber(*v));
   }
   return static_cast<int>(*v);
 }
@@ -60,23 +44,10 @@ const std::array<const char*, 2> kHierarchies = {"staged", "direct"};
 const std::array<const char*, 2> kGradientModes = {"exact", "finite_difference"};
 const std::array<const char*, 1> kParameterisations = {"miossec"};
 
-// `file` resolved against the config file's directory (an absolute path stays as is).
-std::string resolve(const std::string& config_path, const std::string& file) {
-  const fs::path f(file);
-  if (f.is_absolute()) return f.lexically_normal().string();
-  return (fs::path(config_path).parent_path() / f).lexically_normal().string();
-}
-
 // A referenced file must exist and be readable; otherwise the error is at the config's key.
 void requireReadable(const YamlMap& doc, const std::string& key, const std::string& what,
                      const std::string& resolved, const std::string& given) {
-  std::error_code ec;
-  const std::string where = what + " '" + resolved + "' (from '" + given +
-                            "', relative to the configuration file's directory)";
-  if (!fs::is_regular_file(resolved, ec)) {
-    throw doc.error(key, where + " does not exist or is not a regular file");
-  }
-  if (!std::ifstream(resolved)) throw doc.error(key, where + " cannot be read");
+  requireReadableFile(doc, key, what, resolved, given, "configuration file");
 }
 
 SolverSettings parseSolver(const YamlMap& m) {
@@ -90,7 +61,7 @@ SolverSettings parseSolver(const YamlMap& m) {
                                                               : HierarchyStrategy::Staged;
   s.max_iter = integerOr(m, "max_iter", 1, s.max_iter);
   if (const std::optional<double> tol = m.optionalNumber("tol")) {
-    if (!(*tol > 0.0)) throw m.error("tol", "must be > 0, got " + show(*tol));
+    if (!(*tol > 0.0)) throw m.error("tol", "must be > 0, got " + showNumber(*tol));
     s.tol = *tol;
   }
   if (m.has("constraint_exchange")) s.constraint_exchange = m.boolean("constraint_exchange");
@@ -120,7 +91,7 @@ OptimizeConfig loadOptimizeConfig(const std::string& path) {
 
   const std::string robot = doc.string("robot");
   if (robot.empty()) throw doc.error("robot", "must name the robot description file");
-  c.robot_path = resolve(path, robot);
+  c.robot_path = resolveAgainstFile(path, robot);
 
   if (const std::optional<YamlMap> options = doc.optionalMap("options")) {
     if (options->has("target_speed")) {
@@ -139,7 +110,7 @@ OptimizeConfig loadOptimizeConfig(const std::string& path) {
   if (const std::optional<double> speed = doc.optionalNumber("speed")) {
     if (!(*speed > 0.0)) {
       throw doc.error("speed", "must be > 0 m/s (leave it out for a free speed), got " +
-                                   show(*speed));
+                                   showNumber(*speed));
     }
     c.speed = *speed;
   }
@@ -167,7 +138,7 @@ OptimizeConfig loadOptimizeConfig(const std::string& path) {
   c.robot = loadRobot(c.robot_path);  // errors inside the robot file name that file
 
   if (initial != "default") {
-    const std::string gait = resolve(path, initial);
+    const std::string gait = resolveAgainstFile(path, initial);
     requireReadable(doc, "initial_guess", "gait file", gait, initial);
     c.initial_guess_path = gait;
     const GaitFile guess = loadGaitFile(gait);  // errors name the gait file

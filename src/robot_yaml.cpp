@@ -3,7 +3,6 @@
 #include <array>
 #include <cstddef>
 #include <optional>
-#include <sstream>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -18,21 +17,15 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kRadPerDeg = kPi / 180.0;
 
-std::string show(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
 double positive(const YamlMap& m, const std::string& key) {
   const double value = m.number(key);
-  if (value <= 0.0) throw m.error(key, "must be > 0, got " + show(value));
+  if (value <= 0.0) throw m.error(key, "must be > 0, got " + showNumber(value));
   return value;
 }
 
 double nonNegative(const YamlMap& m, const std::string& key) {
   const double value = m.number(key);
-  if (value < 0.0) throw m.error(key, "must be >= 0, got " + show(value));
+  if (value < 0.0) throw m.error(key, "must be >= 0, got " + showNumber(value));
   return value;
 }
 
@@ -45,7 +38,7 @@ std::array<double, 4> nonNegativeJoints(const YamlMap& m, const std::string& key
   const std::vector<double> values = m.numbers(key, 4);
   std::array<double, 4> joints{};
   for (std::size_t j = 0; j < joints.size(); ++j) {
-    if (values[j] < 0.0) throw m.elementError(key, j, "must be >= 0, got " + show(values[j]));
+    if (values[j] < 0.0) throw m.elementError(key, j, "must be >= 0, got " + showNumber(values[j]));
     joints[j] = values[j];
   }
   return joints;
@@ -75,9 +68,10 @@ TorqueEnvelope readEnvelope(const YamlMap& m) {
   for (std::size_t k = 0; k < envelope.speed.size(); ++k) {
     if (k == 0 ? speed[k] < 0.0 : speed[k] <= speed[k - 1]) {
       throw m.elementError("speed", k, "speeds must be >= 0 and strictly increasing, got " +
-                                           show(speed[k]));
+                                           showNumber(speed[k]));
     }
-    if (torque[k] < 0.0) throw m.elementError("torque", k, "must be >= 0, got " + show(torque[k]));
+    if (torque[k] < 0.0)
+      throw m.elementError("torque", k, "must be >= 0, got " + showNumber(torque[k]));
     envelope.speed[k] = speed[k];
     envelope.torque[k] = torque[k];
   }
@@ -98,8 +92,8 @@ std::pair<double, double> degreeRange(const YamlMap& m, const std::string& min_k
   const double lo = m.number(min_key);
   const double hi = m.number(max_key);
   if (lo >= hi) {
-    throw m.error(min_key, "must be less than " + max_key + " (" + show(lo) + " >= " +
-                               show(hi) + " deg)");
+    throw m.error(min_key, "must be less than " + max_key + " (" + showNumber(lo) + " >= " +
+                               showNumber(hi) + " deg)");
   }
   return {lo * kRadPerDeg, hi * kRadPerDeg};
 }
@@ -121,14 +115,14 @@ SupportBar readBarGeometry(const YamlMap& bar_map, const YamlMap& m) {
   bar.bar_mass = positive(m, "bar_mass");
   bar.counterweight_mass = positive(m, "counterweight_mass");
   if (bar.overhang >= bar.bar_length) {
-    throw m.error("overhang", "must be shorter than bar_length (" + show(bar.overhang) +
-                                  " >= " + show(bar.bar_length) + ")");
+    throw m.error("overhang", "must be shorter than bar_length (" + showNumber(bar.overhang) +
+                                  " >= " + showNumber(bar.bar_length) + ")");
   }
   bar.equivalent_mass =
       barEquivalentMass(bar.bar_length, bar.overhang, bar.bar_mass, bar.counterweight_mass);
   if (bar.equivalent_mass <= 0.0) {
     throw bar_map.error("geometry", "gives an equivalent mass (1.29) of " +
-                                        show(bar.equivalent_mass) +
+                                        showNumber(bar.equivalent_mass) +
                                         " kg <= 0: the counterweight outweighs the bar");
   }
   return bar;

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 #include <utility>
 
 namespace gaitopt {
@@ -227,6 +228,41 @@ ConfigError YamlMap::elementError(const std::string& key, std::size_t index,
     at = lineOf(entry->second[index]);
   }
   return ConfigError(file(), elementPath(path(key), index), at, problem);
+}
+
+std::string showNumber(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+int choiceIndex(const YamlMap& m, const std::string& key, const char* const* choices,
+                std::size_t count) {
+  const std::string v = m.string(key);
+  std::string list;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (v == choices[i]) return static_cast<int>(i);
+    list += (i == 0 ? "'" : ", '") + std::string(choices[i]) + "'";
+  }
+  throw m.error(key, "expected one of " + list + ", got '" + v + "'");
+}
+
+std::string resolveAgainstFile(const std::string& config_path, const std::string& file) {
+  const std::filesystem::path f(file);
+  if (f.is_absolute()) return f.lexically_normal().string();
+  return (std::filesystem::path(config_path).parent_path() / f).lexically_normal().string();
+}
+
+void requireReadableFile(const YamlMap& doc, const std::string& key, const std::string& what,
+                         const std::string& resolved, const std::string& given,
+                         const std::string& document) {
+  std::error_code ec;
+  const std::string where = what + " '" + resolved + "' (from '" + given + "', relative to the " +
+                            document + "'s directory)";
+  if (!std::filesystem::is_regular_file(resolved, ec)) {
+    throw doc.error(key, where + " does not exist or is not a regular file");
+  }
+  if (!std::ifstream(resolved)) throw doc.error(key, where + " cannot be read");
 }
 
 }  // namespace gaitopt

@@ -2,17 +2,13 @@
 // the shipped example, exact round trips, ConfigError (file, dotted key, line) for each kind of
 // bad input, and the command's outputs and exit codes.
 #include <catch2/catch.hpp>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -22,6 +18,8 @@
 #include "gaitopt/gait_trajectory.hpp"
 #include "gaitopt/gait_yaml.hpp"
 #include "gaitopt/yaml_reader.hpp"
+#include "test_files.hpp"
+#include "test_support.hpp"
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
@@ -31,53 +29,21 @@ using gaitopt::GaitOptions;
 using gaitopt::GaitParameters;
 using gaitopt::loadGaitFile;
 using gaitopt::ModelOptions;
+using gaitopt::test::CliRun;
+using gaitopt::test::quoted;
+using gaitopt::test::readFile;
+using gaitopt::test::runCli;
+using gaitopt::test::sourcePath;
 
 namespace {
 
-std::string sourceFile(const std::string& relative) {
-  return std::string(GAITOPT_SOURCE_DIR) + "/" + relative;
-}
-
-const std::string kExample = sourceFile("configs/gait/default_step.yaml");
-const std::string kRobot = sourceFile("configs/robot/rabbit_miossec.yaml");
+const std::string kExample = sourcePath("configs/gait/default_step.yaml");
+const std::string kRobot = sourcePath("configs/robot/rabbit_miossec.yaml");
 
 // Scratch directory for gait files and command outputs, removed when the test binary exits.
-class ScratchDir {
- public:
-  ScratchDir() {
-    std::random_device random;
-    dir_ = fs::temp_directory_path() / ("gaitopt_gait_io_" + std::to_string(random()));
-    fs::create_directories(dir_);
-  }
-  ~ScratchDir() {
-    std::error_code ignored;
-    fs::remove_all(dir_, ignored);
-  }
-  std::string write(const std::string& content, const std::string& stem = "gait") {
-    const fs::path path = dir_ / (stem + "_" + std::to_string(++count_) + ".yaml");
-    std::ofstream(path) << content;
-    return path.string();
-  }
-  std::string fresh(const std::string& stem) {
-    return (dir_ / (stem + "_" + std::to_string(++count_))).string();
-  }
-  const fs::path& dir() const { return dir_; }
-
- private:
-  fs::path dir_;
-  int count_ = 0;
-};
-
-ScratchDir& scratch() {
-  static ScratchDir dir;
+gaitopt::test::ScratchDir& scratch() {
+  static gaitopt::test::ScratchDir dir("gait_io", "gait");
   return dir;
-}
-
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 // A hand-made defined step that violates level 5 (tests/test_gait_support.hpp: definedStep).
@@ -118,29 +84,12 @@ std::vector<std::string> validGait() {
 
 // The valid gait with some lines (1-based) replaced; "#" blanks a line without shifting others.
 std::string gaitWith(const std::map<int, std::string>& replaced = {}) {
-  const std::vector<std::string> lines = validGait();
-  std::string text;
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    const auto it = replaced.find(static_cast<int>(i + 1));
-    text += (it == replaced.end() ? lines[i] : it->second) + "\n";
-  }
-  return text;
+  return gaitopt::test::withLines(validGait(), replaced);
 }
 
 // Loading `yaml` must throw a ConfigError for `key` at `line`, with the standard message.
 void requireError(const std::string& yaml, const std::string& key, int line) {
-  const std::string path = scratch().write(yaml);
-  try {
-    loadGaitFile(path);
-    FAIL("no ConfigError; expected key '" << key << "' at line " << line);
-  } catch (const ConfigError& e) {
-    INFO(e.what());
-    CHECK(e.file() == path);
-    CHECK(e.key() == key);
-    CHECK(e.line() == line);
-    const std::string where = path + ":" + std::to_string(line) + ": key '" + key + "': ";
-    CHECK_THAT(std::string(e.what()), Contains(where));
-  }
+  gaitopt::test::requireConfigError(loadGaitFile, scratch().write(yaml), key, line);
 }
 
 bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
@@ -164,23 +113,6 @@ void requireSameOptions(const GaitOptions& a, const GaitOptions& b) {
   CHECK(a.full_torque_envelope == b.full_torque_envelope);
   CHECK(sameBits(a.target_speed, b.target_speed));
 }
-
-struct CliRun {
-  int exit_code;
-  std::string out, err;
-};
-
-// Runs the gaitopt binary with `args`, capturing standard output and error.
-CliRun runCli(const std::string& args) {
-  const std::string out = scratch().fresh("stdout"), err = scratch().fresh("stderr");
-  const std::string command =
-      std::string("'") + GAITOPT_CLI + "' " + args + " >'" + out + "' 2>'" + err + "'";
-  const int status = std::system(command.c_str());
-  REQUIRE(WIFEXITED(status));
-  return {WEXITSTATUS(status), readFile(out), readFile(err)};
-}
-
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
 }  // namespace
 

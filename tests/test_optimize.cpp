@@ -3,13 +3,11 @@
 // an infeasible request, and `gaitopt optimize` end to end (outputs, exit codes, the written
 // gait read back by `gaitopt evaluate`, seeded random starts).
 #include <catch2/catch.hpp>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <random>
@@ -27,61 +25,31 @@
 #include "gaitopt/optimize_config.hpp"
 #include "gaitopt/random_start.hpp"
 #include "gaitopt/robot_yaml.hpp"
+#include "test_files.hpp"
+#include "test_support.hpp"
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
-using gaitopt::ConfigError;
 using gaitopt::GaitEvaluation;
 using gaitopt::GaitEvaluator;
 using gaitopt::GaitParameters;
 using gaitopt::OptimizationResult;
 using gaitopt::OptimizeConfig;
+using gaitopt::test::CliRun;
+using gaitopt::test::quoted;
+using gaitopt::test::readFile;
+using gaitopt::test::runCli;
+using gaitopt::test::sourcePath;
 
 namespace {
 
-std::string sourceFile(const std::string& relative) {
-  return std::string(GAITOPT_SOURCE_DIR) + "/" + relative;
-}
-
-const std::string kDefaultConfig = sourceFile("configs/default.yaml");
-const std::string kRobot = sourceFile("configs/robot/rabbit_miossec.yaml");
+const std::string kDefaultConfig = sourcePath("configs/default.yaml");
+const std::string kRobot = sourcePath("configs/robot/rabbit_miossec.yaml");
 
 // Scratch directory for configuration files and command outputs, removed at exit.
-class Scratch {
- public:
-  Scratch() {
-    std::random_device random;
-    dir_ = fs::temp_directory_path() / ("gaitopt_optimize_" + std::to_string(random()));
-    fs::create_directories(dir_);
-  }
-  ~Scratch() {
-    std::error_code ignored;
-    fs::remove_all(dir_, ignored);
-  }
-  std::string write(const std::string& content, const std::string& stem = "config") {
-    const fs::path path = fresh(stem) + ".yaml";
-    std::ofstream(path) << content;
-    return path.string();
-  }
-  std::string fresh(const std::string& stem) {
-    return (dir_ / (stem + "_" + std::to_string(++count_))).string();
-  }
-
- private:
-  fs::path dir_;
-  int count_ = 0;
-};
-
-Scratch& scratch() {
-  static Scratch dir;
+gaitopt::test::ScratchDir& scratch() {
+  static gaitopt::test::ScratchDir dir("optimize", "config");
   return dir;
-}
-
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 // A valid configuration; the numbers on the right are the 1-based lines the error tests assert.
@@ -110,48 +78,15 @@ std::vector<std::string> validConfig() {
 
 // The valid configuration with some lines (1-based) replaced; "#" blanks a line.
 std::string configWith(const std::map<int, std::string>& replaced = {}) {
-  const std::vector<std::string> lines = validConfig();
-  std::string text;
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    const auto it = replaced.find(static_cast<int>(i + 1));
-    text += (it == replaced.end() ? lines[i] : it->second) + "\n";
-  }
-  return text;
+  return gaitopt::test::withLines(validConfig(), replaced);
 }
 
 // Loading `yaml` must throw a ConfigError for `key` at `line`, with the standard message.
 void requireError(const std::string& yaml, const std::string& key, int line,
                   const std::string& problem = "") {
-  const std::string path = scratch().write(yaml);
-  try {
-    gaitopt::loadOptimizeConfig(path);
-    FAIL("no ConfigError; expected key '" << key << "' at line " << line);
-  } catch (const ConfigError& e) {
-    INFO(e.what());
-    CHECK(e.file() == path);
-    CHECK(e.key() == key);
-    CHECK(e.line() == line);
-    CHECK_THAT(std::string(e.what()),
-               Contains(path + ":" + std::to_string(line) + ": key '" + key + "': "));
-    if (!problem.empty()) CHECK_THAT(std::string(e.what()), Contains(problem));
-  }
+  gaitopt::test::requireConfigError(gaitopt::loadOptimizeConfig, scratch().write(yaml), key,
+                                    line, problem);
 }
-
-struct CliRun {
-  int exit_code;
-  std::string out, err;
-};
-
-CliRun runCli(const std::string& args) {
-  const std::string out = scratch().fresh("stdout"), err = scratch().fresh("stderr");
-  const std::string command =
-      std::string("'") + GAITOPT_CLI + "' " + args + " >'" + out + "' 2>'" + err + "'";
-  const int status = std::system(command.c_str());
-  REQUIRE(WIFEXITED(status));
-  return {WEXITSTATUS(status), readFile(out), readFile(err)};
-}
-
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
 // First number written as `"key": <number>` in a JSON text (keys whose first occurrence holds
 // a string or null are skipped to the next occurrence).
@@ -250,17 +185,17 @@ TEST_CASE("optimize: the shipped configurations load with their documented value
   CHECK(gaitopt::configuredInitialGuess(c, ev.model()) ==
         gaitopt::defaultInitialGuess(ev.model(), 0.5));
 
-  const OptimizeConfig ipopt = gaitopt::loadOptimizeConfig(sourceFile("configs/default_ipopt.yaml"));
+  const OptimizeConfig ipopt = gaitopt::loadOptimizeConfig(sourcePath("configs/default_ipopt.yaml"));
   CHECK(ipopt.solver.backend == gaitopt::Backend::Ipopt);
   CHECK(ipopt.solver.constraint_exchange);
   using Options = std::vector<std::pair<std::string, std::string>>;
   CHECK(ipopt.solver.ipopt_options == Options{{"limited_memory_max_history", "30"}});
 
-  const OptimizeConfig chesse = gaitopt::loadOptimizeConfig(sourceFile("configs/chesse_0.85.yaml"));
+  const OptimizeConfig chesse = gaitopt::loadOptimizeConfig(sourcePath("configs/chesse_0.85.yaml"));
   CHECK(chesse.robot.name == "rabbit_chesse");
   CHECK(*chesse.speed == 0.85);
   const OptimizeConfig ca =
-      gaitopt::loadOptimizeConfig(sourceFile("configs/chevallereau_aoustin_0.75.yaml"));
+      gaitopt::loadOptimizeConfig(sourcePath("configs/chevallereau_aoustin_0.75.yaml"));
   CHECK(ca.robot.name == "rabbit_chevallereau_aoustin");
   CHECK(*ca.speed == 0.75);
 }
@@ -303,7 +238,7 @@ TEST_CASE("optimize: configuration keys, defaults and pass-through Ipopt options
             .epsilon(1e-9));
 
   // Other criteria and backends; an initial guess from a gait file (relative to the config).
-  const std::string gait = sourceFile("configs/gait/default_step.yaml");
+  const std::string gait = sourcePath("configs/gait/default_step.yaml");
   const OptimizeConfig other = gaitopt::loadOptimizeConfig(scratch().write(configWith(
       {{5, "criterion: W"}, {8, "initial_guess: " + gait}, {10, "  backend: nlopt_cobyla"},
        {11, "  hierarchy: direct"}})));

@@ -6,14 +6,14 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "gaitopt/config_error.hpp"
 #include "gaitopt/robot_yaml.hpp"
 #include "gaitopt/yaml_reader.hpp"
+#include "test_files.hpp"
+#include "test_support.hpp"
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
@@ -26,34 +26,12 @@ namespace {
 const double kPi = std::acos(-1.0);
 
 std::string robotFile(const std::string& name) {
-  return std::string(GAITOPT_SOURCE_DIR) + "/configs/robot/" + name;
+  return gaitopt::test::sourcePath("configs/robot/" + name);
 }
 
 // Scratch directory for the bad files, removed when the test binary exits.
-class ScratchDir {
- public:
-  ScratchDir() {
-    std::random_device random;
-    dir_ = fs::temp_directory_path() / ("gaitopt_robot_yaml_" + std::to_string(random()));
-    fs::create_directories(dir_);
-  }
-  ~ScratchDir() {
-    std::error_code ignored;
-    fs::remove_all(dir_, ignored);
-  }
-  std::string write(const std::string& content) {
-    const fs::path path = dir_ / ("robot_" + std::to_string(++count_) + ".yaml");
-    std::ofstream(path) << content;
-    return path.string();
-  }
-
- private:
-  fs::path dir_;
-  int count_ = 0;
-};
-
-ScratchDir& scratch() {
-  static ScratchDir dir;
+gaitopt::test::ScratchDir& scratch() {
+  static gaitopt::test::ScratchDir dir("robot_yaml", "robot");
   return dir;
 }
 
@@ -93,28 +71,12 @@ const std::vector<std::string> kValidRobot = {
 
 // kValidRobot with some lines (1-based) replaced; "#" blanks a line without shifting others.
 std::string robotWith(const std::map<int, std::string>& replaced = {}) {
-  std::string text;
-  for (std::size_t i = 0; i < kValidRobot.size(); ++i) {
-    const auto it = replaced.find(static_cast<int>(i + 1));
-    text += (it == replaced.end() ? kValidRobot[i] : it->second) + "\n";
-  }
-  return text;
+  return gaitopt::test::withLines(kValidRobot, replaced);
 }
 
 // Loading `yaml` must throw a ConfigError for `key` at `line`, with the standard message.
 void requireError(const std::string& yaml, const std::string& key, int line) {
-  const std::string path = scratch().write(yaml);
-  try {
-    loadRobot(path);
-    FAIL("no ConfigError; expected key '" << key << "' at line " << line);
-  } catch (const ConfigError& e) {
-    INFO(e.what());
-    CHECK(e.file() == path);
-    CHECK(e.key() == key);
-    CHECK(e.line() == line);
-    const std::string where = path + ":" + std::to_string(line) + ": key '" + key + "': ";
-    CHECK_THAT(std::string(e.what()), Contains(where));
-  }
+  gaitopt::test::requireConfigError(loadRobot, scratch().write(yaml), key, line);
 }
 
 }  // namespace

@@ -1,15 +1,10 @@
 // Speed sweeps: the --speeds and --shard syntax, contiguous chunks, continuation on the default
 // robot (one chain, two threaded chains, shards), sweep.csv merging, and the `gaitopt sweep` /
 // `gaitopt sweep-merge` commands. Three speeds only, to keep the runtime small.
-#include <sys/wait.h>
-
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -17,6 +12,7 @@
 
 #include "gaitopt/initial_guess.hpp"
 #include "gaitopt/speed_sweep.hpp"
+#include "test_files.hpp"
 #include "test_gait_support.hpp"
 
 namespace fs = std::filesystem;
@@ -26,39 +22,16 @@ using gaitopt::parseShard;
 using gaitopt::parseSpeedRange;
 using gaitopt::SweepPoint;
 using gaitopt::SweepSettings;
+using gaitopt::test::CliRun;
+using gaitopt::test::quoted;
+using gaitopt::test::readFile;
+using gaitopt::test::runCli;
 
 namespace {
 
-class SweepScratch {
- public:
-  SweepScratch() {
-    std::random_device random;
-    dir_ = fs::temp_directory_path() / ("gaitopt_sweep_" + std::to_string(random()));
-    fs::create_directories(dir_);
-  }
-  ~SweepScratch() {
-    std::error_code ignored;
-    fs::remove_all(dir_, ignored);
-  }
-  std::string fresh(const std::string& stem) {
-    return (dir_ / (stem + "_" + std::to_string(++count_))).string();
-  }
-
- private:
-  fs::path dir_;
-  int count_ = 0;
-};
-
-SweepScratch& scratch() {
-  static SweepScratch s;
+gaitopt::test::ScratchDir& scratch() {
+  static gaitopt::test::ScratchDir s("sweep");
   return s;
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 std::vector<std::string> lines(const std::string& text) {
@@ -72,20 +45,6 @@ std::vector<std::string> lines(const std::string& text) {
 
 // The speed column of a sweep.csv row.
 double firstField(const std::string& row) { return std::stod(row.substr(0, row.find(','))); }
-
-struct Run {
-  int exit_code;
-  std::string out, err;
-};
-
-Run runGaitopt(const std::string& args) {
-  const std::string out = scratch().fresh("stdout"), err = scratch().fresh("stderr");
-  const std::string command =
-      std::string("'") + GAITOPT_CLI + "' " + args + " >'" + out + "' 2>'" + err + "'";
-  const int status = std::system(command.c_str());
-  REQUIRE(WIFEXITED(status));
-  return {WEXITSTATUS(status), slurp(out), slurp(err)};
-}
 
 const gaitopt::GaitEvaluator& evaluator() {
   static const gaitopt::GaitEvaluator ev = gaitopt::test::defaultGaitEvaluator();
@@ -105,7 +64,7 @@ bool sameBits(const gaitopt::GaitParameters& a, const gaitopt::GaitParameters& b
   return true;
 }
 
-const std::string kConfig = std::string(GAITOPT_SOURCE_DIR) + "/configs/default.yaml";
+const std::string kConfig = gaitopt::test::sourcePath("configs/default.yaml");
 
 }  // namespace
 
@@ -270,15 +229,16 @@ TEST_CASE("mergeSweepCsvs sorts rows and rejects duplicates and foreign headers"
 
 TEST_CASE("gaitopt sweep and sweep-merge: outputs, shards, exit codes", "[sweep]") {
   REQUIRE(fs::exists(kConfig));
-  const std::string cfg = "'" + kConfig + "'";
+  const std::string cfg = quoted(kConfig);
 
   SECTION("one run writes sweep.csv and one folder per speed") {
     const std::string out = scratch().fresh("sweep");
-    const Run r = runGaitopt("sweep --config " + cfg + " --speeds 0.4:0.6:0.1 --out '" + out + "'");
+    const CliRun r =
+        runCli("sweep --config " + cfg + " --speeds 0.4:0.6:0.1 --out " + quoted(out));
     INFO(r.out << r.err);
     CHECK(r.exit_code == 0);
     CHECK_THAT(r.out, Contains("[3/3] v="));
-    const std::vector<std::string> csv = lines(slurp(out + "/sweep.csv"));
+    const std::vector<std::string> csv = lines(readFile(out + "/sweep.csv"));
     REQUIRE(csv.size() == 4);
     CHECK(csv[0] ==
           "speed,status,C_Gamma,C_E,W,C_frott,step_length,T_SS,T_DS,iterations,wall_time_s");
@@ -293,19 +253,20 @@ TEST_CASE("gaitopt sweep and sweep-merge: outputs, shards, exit codes", "[sweep]
   SECTION("two shards merge into the full list") {
     const std::string a = scratch().fresh("shard0"), b = scratch().fresh("shard1");
     const std::string merged = scratch().fresh("merged");
-    const Run r0 = runGaitopt("sweep --config " + cfg +
-                              " --speeds 0.4:0.6:0.1 --shard 0/2 --quiet --out '" + a + "'");
-    const Run r1 = runGaitopt("sweep --config " + cfg +
-                              " --speeds 0.4:0.6:0.1 --shard 1/2 --quiet --out '" + b + "'");
+    const CliRun r0 = runCli("sweep --config " + cfg +
+                             " --speeds 0.4:0.6:0.1 --shard 0/2 --quiet --out " + quoted(a));
+    const CliRun r1 = runCli("sweep --config " + cfg +
+                             " --speeds 0.4:0.6:0.1 --shard 1/2 --quiet --out " + quoted(b));
     INFO(r0.out << r0.err << r1.out << r1.err);
     CHECK(r0.exit_code == 0);
     CHECK(r1.exit_code == 0);
-    CHECK(lines(slurp(a + "/sweep.csv")).size() == 2);
-    CHECK(lines(slurp(b + "/sweep.csv")).size() == 3);
-    const Run m = runGaitopt("sweep-merge --out '" + merged + "' '" + b + "' '" + a + "'");
+    CHECK(lines(readFile(a + "/sweep.csv")).size() == 2);
+    CHECK(lines(readFile(b + "/sweep.csv")).size() == 3);
+    const CliRun m =
+        runCli("sweep-merge --out " + quoted(merged) + " " + quoted(b) + " " + quoted(a));
     INFO(m.out << m.err);
     CHECK(m.exit_code == 0);
-    const std::vector<std::string> csv = lines(slurp(merged + "/sweep.csv"));
+    const std::vector<std::string> csv = lines(readFile(merged + "/sweep.csv"));
     REQUIRE(csv.size() == 4);
     CHECK(csv[0] == gaitopt::kSweepCsvHeader);
     CHECK(firstField(csv[1]) == 0.4);
@@ -313,7 +274,8 @@ TEST_CASE("gaitopt sweep and sweep-merge: outputs, shards, exit codes", "[sweep]
     CHECK(firstField(csv[3]) == 0.6);
 
     const std::string dup = scratch().fresh("dup");
-    const Run d = runGaitopt("sweep-merge --out '" + dup + "' '" + a + "' '" + a + "'");
+    const CliRun d =
+        runCli("sweep-merge --out " + quoted(dup) + " " + quoted(a) + " " + quoted(a));
     CHECK(d.exit_code == 2);
     CHECK_THAT(d.err, Contains("appears twice"));
     CHECK_FALSE(fs::exists(dup));
@@ -325,15 +287,16 @@ TEST_CASE("gaitopt sweep and sweep-merge: outputs, shards, exit codes", "[sweep]
           "--speeds 0.4:0.6:0.1 --shard 3/2", "--speeds 0.4:0.6:0.1 --shard 0/4",
           "--speeds 0.4:0.6:0.1 --jobs 0"}) {
       const std::string out = scratch().fresh("bad");
-      const Run r = runGaitopt("sweep --config " + cfg + " " + bad + " --out '" + out + "'");
+      const CliRun r = runCli("sweep --config " + cfg + " " + bad + " --out " + quoted(out));
       INFO(bad << ": " << r.err);
       CHECK(r.exit_code == 2);
       CHECK_FALSE(r.err.empty());
       CHECK_FALSE(fs::exists(out));
     }
     const std::string out = scratch().fresh("bad_config");
-    const Run r =
-        runGaitopt("sweep --config '" + out + ".yaml' --speeds 0.4:0.6:0.1 --out '" + out + "'");
+    const CliRun r =
+        runCli("sweep --config " + quoted(out + ".yaml") + " --speeds 0.4:0.6:0.1 --out " +
+               quoted(out));
     CHECK(r.exit_code == 2);
     CHECK_FALSE(fs::exists(out));
   }

@@ -5,6 +5,7 @@
 // gait and optimiser loaders so that all config files fail the same, helpful way.
 #include <yaml-cpp/yaml.h>
 
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <optional>
@@ -77,5 +78,32 @@ class YamlMap {
 
   std::shared_ptr<State> state_;
 };
+
+// Helpers shared by the loaders.
+
+// `value` as a stream writes it by default (six significant digits), for error messages.
+std::string showNumber(double value);
+
+// The index of the string value of `key` among `count` `choices`; any other value is a
+// ConfigError at `key` that lists the choices. The key must be present.
+int choiceIndex(const YamlMap& m, const std::string& key, const char* const* choices,
+                std::size_t count);
+template <std::size_t N>
+int choiceIndex(const YamlMap& m, const std::string& key,
+                const std::array<const char*, N>& choices) {
+  return choiceIndex(m, key, choices.data(), N);
+}
+
+// A file named in the configuration file `config_path`: an absolute path as is, a relative one
+// against that file's directory; lexically normalised.
+std::string resolveAgainstFile(const std::string& config_path, const std::string& file);
+
+// The file named at `key` of `doc` (as `given`, resolved to `resolved`) must exist and be
+// readable; otherwise a ConfigError at `key`, e.g. "robot file '/a/r.yaml' (from 'r.yaml',
+// relative to the gait file's directory) does not exist or is not a regular file", with `what`
+// = "robot file" and `document` = "gait file".
+void requireReadableFile(const YamlMap& doc, const std::string& key, const std::string& what,
+                         const std::string& resolved, const std::string& given,
+                         const std::string& document);
 
 }  // namespace gaitopt

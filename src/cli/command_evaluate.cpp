@@ -1,11 +1,11 @@
 // `gaitopt evaluate`: one walking step from a gait file → summary.json (+ trajectory.csv).
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
 
+#include "cli_common.hpp"
 #include "commands.hpp"
 #include "gaitopt/atomic_file.hpp"
 #include "gaitopt/gait_evaluator.hpp"
@@ -23,12 +23,6 @@ struct EvaluateArgs {
   std::string out;
   std::optional<double> sample_rate;
 };
-
-std::string shortNumber(double v, const char* format = "%.6g") {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
 
 }  // namespace
 
@@ -61,10 +55,7 @@ void registerEvaluateCommand(CLI::App& app, int& exit_code) {
     // Everything that can fail on bad input happens before the output directory is touched.
     GaitFile gait = loadGaitFile(args->gait);
     if (args->sample_rate) gait.options.sample_rate = *args->sample_rate;
-    std::error_code ec;
-    if (fs::exists(args->out, ec) && !fs::is_directory(args->out, ec)) {
-      throw CLI::ValidationError("--out", "'" + args->out + "' exists and is not a directory");
-    }
+    requireDirectoryOrAbsent(args->out);
 
     const GaitEvaluator evaluator(gait.robot, gait.options, gait.model_options);
     const GaitEvaluation<double> e = evaluator.evaluate(gait.parameters);
@@ -82,6 +73,7 @@ void registerEvaluateCommand(CLI::App& app, int& exit_code) {
     if (csv) {
       writeFileAtomically(csv_path.string(), *csv);
     } else {
+      std::error_code ec;
       fs::remove(csv_path, ec);  // a trajectory from an earlier run would not match this step
     }
 

@@ -2,7 +2,6 @@
 // summary.json, gait.yaml and trajectory.csv; optionally from K seeded random starts.
 #include <cstdint>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -11,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_common.hpp"
 #include "commands.hpp"
 #include "gaitopt/gait_evaluator.hpp"
 #include "gaitopt/gait_optimizer.hpp"
@@ -21,8 +21,6 @@
 
 namespace gaitopt::cli {
 namespace {
-
-namespace fs = std::filesystem;
 
 // Seeds are written to summary.json as JSON numbers, exact up to 2^53.
 constexpr std::uint64_t kMaxSeed = (std::uint64_t{1} << 53) - 1;
@@ -40,19 +38,7 @@ struct Run {
   OptimizationResult result;
 };
 
-std::string shortNumber(double v, const char* format = "%.6g") {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
 bool isOptimal(const OptimizationResult& r) { return r.status == "optimal"; }
-
-// The criterion exists only for a defined step whose motion was computed.
-std::optional<double> criterionOf(const OptimizationResult& r, Criterion c) {
-  if (!r.evaluation.motion_computed || !r.evaluation.defined()) return std::nullopt;
-  return criterionValue(r.evaluation, c);
-}
 
 // How far a run got: every level met (6) above an unmet level 5, 4, ..., 0.
 int progress(const OptimizationResult& r) { return r.unmet_level < 0 ? 6 : r.unmet_level; }
@@ -127,11 +113,6 @@ void writeRandomStarts(JsonWriter& w, const std::vector<Run>& runs, std::uint64_
   w.endObject();
 }
 
-std::string criterionText(const OptimizationResult& r, Criterion c) {
-  const std::optional<double> v = criterionOf(r, c);
-  return v ? shortNumber(*v) : std::string("n/a");
-}
-
 void printStartsTable(std::ostream& out, const std::vector<Run>& runs, Criterion c) {
   char line[128];
   std::snprintf(line, sizeof line, "%6s  %-10s  %14s  %10s  %9s  %s\n", "start", "status",
@@ -181,10 +162,7 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
   cmd->callback([args, &exit_code]() {
     // Everything that can fail on bad input happens before the output directory is touched.
     const OptimizeConfig config = loadOptimizeConfig(args->config);
-    std::error_code ec;
-    if (fs::exists(args->out, ec) && !fs::is_directory(args->out, ec)) {
-      throw CLI::ValidationError("--out", "'" + args->out + "' exists and is not a directory");
-    }
+    requireDirectoryOrAbsent(args->out);
 
     const GaitEvaluator evaluator(config.robot, config.options, config.model_options);
     const GaitParameters initial = configuredInitialGuess(config, evaluator.model());

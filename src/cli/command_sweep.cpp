@@ -2,7 +2,6 @@
 // → OUT/sweep.csv and one folder per speed (summary.json, gait.yaml, trajectory.csv, as written
 // by `gaitopt optimize`); `gaitopt sweep-merge`: the sweep.csv of several shards in one file.
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -13,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_common.hpp"
 #include "commands.hpp"
 #include "gaitopt/atomic_file.hpp"
 #include "gaitopt/gait_evaluator.hpp"
@@ -39,23 +39,6 @@ struct MergeArgs {
   std::string out;
   std::vector<std::string> shards;
 };
-
-std::string format(const char* fmt, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
-}
-
-void requireDirectoryOrAbsent(const std::string& out) {
-  std::error_code ec;
-  if (fs::exists(out, ec) && !fs::is_directory(out, ec))
-    throw CLI::ValidationError("--out", "'" + out + "' exists and is not a directory");
-}
-
-std::string criterionText(const OptimizationResult& r, Criterion c) {
-  if (!r.evaluation.motion_computed || !r.evaluation.defined()) return "n/a";
-  return format("%.1f", criterionValue(r.evaluation, c));
-}
 
 // The sweep's own members of a speed's summary.json.
 void writeSweepMembers(JsonWriter& w, const SweepPoint& p) {
@@ -124,7 +107,8 @@ void registerSweep(CLI::App& app, int& exit_code) {
     }
     requireDirectoryOrAbsent(args->out);
     if (config.speed)
-      std::cerr << "gaitopt: sweep: note: the config's speed (" << format("%g", *config.speed)
+      std::cerr << "gaitopt: sweep: note: the config's speed ("
+                << shortNumber(*config.speed, "%g")
                 << " m/s) is ignored; the sweep sets each speed\n";
 
     // The free-speed problem of the config: no target speed, the configured initial guess
@@ -141,15 +125,17 @@ void registerSweep(CLI::App& app, int& exit_code) {
     const fs::path out(args->out);
     fs::create_directories(out);
 
+    // "v=<speed> m/s  status <status>  <criterion> <value>  elapsed <time> s"
+    const auto progressLine = [&](const SweepProgress& p) {
+      const OptimizationResult& r = p.point.result;
+      return "v=" + shortNumber(p.point.speed, "%.3f") + " m/s  status " + r.status + "  " +
+             criterionName(criterion) + " " + criterionText(r, criterion, "%.1f") +
+             "  elapsed " + shortNumber(p.elapsed_s, "%.1f") + " s";
+    };
     auto progress = [&](const SweepProgress& p) {
       const OptimizationResult& r = p.point.result;
       if (p.free_speed) {
-        if (!args->quiet)
-          std::cout << "free speed: v=" << format("%.3f", p.point.speed) << " m/s  status "
-                    << r.status << "  " << criterionName(criterion) << " "
-                    << criterionText(r, criterion) << "  elapsed " << format("%.1f", p.elapsed_s)
-                    << " s\n"
-                    << std::flush;
+        if (!args->quiet) std::cout << "free speed: " << progressLine(p) << "\n" << std::flush;
         return;
       }
       // The speed's outputs, as `gaitopt optimize` with `speed` set to it would write them.
@@ -163,10 +149,7 @@ void registerSweep(CLI::App& app, int& exit_code) {
           dir, optimizationOutputs(speed_evaluator, speed_config, r, dir,
                                    [&](JsonWriter& w) { writeSweepMembers(w, p.point); }));
       if (!args->quiet)
-        std::cout << "[" << p.done << "/" << p.total << "] v=" << format("%.3f", p.point.speed)
-                  << " m/s  status " << r.status << "  " << criterionName(criterion) << " "
-                  << criterionText(r, criterion) << "  elapsed " << format("%.1f", p.elapsed_s)
-                  << " s"
+        std::cout << "[" << p.done << "/" << p.total << "] " << progressLine(p)
                   << (p.point.attempts > 1 ? "  (" + std::to_string(p.point.attempts) + " attempts)"
                                            : "")
                   << "\n"
@@ -178,7 +161,7 @@ void registerSweep(CLI::App& app, int& exit_code) {
     std::vector<std::string> failed;
     for (const SweepPoint& p : points)
       if (p.result.status != "optimal")
-        failed.push_back(format("%g", p.speed) + " m/s (" + p.result.status + ")");
+        failed.push_back(shortNumber(p.speed, "%g") + " m/s (" + p.result.status + ")");
     std::cout << "sweep: " << points.size() - failed.size() << "/" << points.size()
               << " speeds optimal -> " << (out / "sweep.csv").string() << "\n";
     if (failed.empty()) {

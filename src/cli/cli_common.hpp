@@ -1,0 +1,25 @@
+#pragma once
+// Helpers shared by the `gaitopt` subcommands: number formatting, the --out check and the
+// criterion of an optimisation result.
+#include <optional>
+#include <string>
+
+#include "gaitopt/gait_optimizer.hpp"
+#include "gaitopt/gait_problem.hpp"
+
+namespace gaitopt::cli {
+
+// `v` formatted with the printf `format` (one floating-point conversion).
+std::string shortNumber(double v, const char* format = "%.6g");
+
+// Bad input (CLI::ValidationError at --out) when `out` exists and is not a directory; called
+// before anything is written.
+void requireDirectoryOrAbsent(const std::string& out);
+
+// The criterion of a result; it exists only for a defined step whose motion was computed.
+std::optional<double> criterionOf(const OptimizationResult& r, Criterion c);
+
+// criterionOf formatted with `format`, or "n/a".
+std::string criterionText(const OptimizationResult& r, Criterion c, const char* format = "%.6g");
+
+}  // namespace gaitopt::cli
