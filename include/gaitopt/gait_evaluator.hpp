@@ -1,7 +1,7 @@
 #pragma once
 // Evaluator of Miossec's parameterised walking step: a constant description (model, options,
 // grids, constraint layout) and the per-call evaluation of values, or values with the exact
-// gradient with respect to the 17 parameters.
+// gradient with respect to the parameters (17 for the thesis, more for a richer one).
 #include <Eigen/Core>
 #include <algorithm>
 

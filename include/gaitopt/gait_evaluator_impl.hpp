@@ -1,5 +1,5 @@
 #pragma once
-// Evaluation of one walking step from the 17 parameters (§3.3), templated on the scalar so the
+// Evaluation of one walking step from its parameters (§3.3), templated on the scalar so the
 // same code yields values (double) and exact gradients (forward-mode AD). Stages follow the
 // hierarchy: boundary geometry (levels 0–1), zero dynamics and DS boundary (levels 2–4, with the
 // saturations (3.54)–(3.56)), then the full motion (level 5 and criteria).

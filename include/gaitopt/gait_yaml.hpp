@@ -1,5 +1,5 @@
 #pragma once
-// Gait files: one walking step (the 17 parameters of gait_parameters.hpp), the robot it is
+// Gait files: one walking step (the parameters of gait_parameters.hpp), the robot it is
 // for and the evaluation options, as read by `gaitopt evaluate` and written by the optimiser.
 //
 //   robot: ../robot/rabbit_miossec.yaml   # relative to the gait file's directory
@@ -54,7 +54,7 @@ GaitOptions parseGaitOptions(const YamlMap& options_map, ModelOptions& model_opt
 std::string gaitOptionsYaml(const GaitOptions& options, const ModelOptions& model_options,
                             int indent = 2);
 
-// A complete gait file (header comment, robot path, the 17 parameters in order at full
+// A complete gait file (header comment, robot path, every parameter in order at full
 // precision, every option) that loadGaitFile reads back with bit-identical values.
 // `robot_path_relative` is written as given; it is resolved against the directory the
 // file is saved in.

@@ -57,8 +57,8 @@ struct OptimizeConfig {
 // print_every < 0, an Ipopt option that Ipopt rejects (reported at `solver.ipopt.<key>`),
 // `options.target_speed` (use `speed`), and a missing or unreadable robot or initial-guess
 // gait file (reported at the config's `robot` / `initial_guess` key; errors inside those
-// files name the files themselves). Only the 17 parameters of an initial-guess gait file are
-// used; its robot and options are ignored.
+// files name the files themselves). Only the parameters of an initial-guess gait file are
+// used (refined if coarser; a richer one is an error); its robot and options are ignored.
 OptimizeConfig loadOptimizeConfig(const std::string& path);
 
 // The configured starting point: the gait file's parameters, or defaultInitialGuess(model,

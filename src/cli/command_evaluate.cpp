@@ -33,7 +33,7 @@ void registerEvaluateCommand(CLI::App& app, int& exit_code) {
       "Evaluate one walking step of a gait file: writes OUT/summary.json and, for a defined "
       "step, OUT/trajectory.csv. Exit 0: step defined (level-5 constraints may be violated); "
       "3: step undefined (summary.json still written); 2: bad input (nothing written).");
-  cmd->add_option("--gait", args->gait, "Gait YAML file (robot, 17 parameters, options)")
+  cmd->add_option("--gait", args->gait, "Gait YAML file (robot, parameters, options)")
       ->required();
   cmd->add_option("--out", args->out, "Output directory (created if missing)")->required();
   cmd->add_option("--sample-rate", args->sample_rate,
