@@ -27,8 +27,8 @@ std::vector<std::string> Parameterisation::names() const {
     const int i = ssPointIndex(k);
     n[i] = "delta1" + at;
     n[i + 1] = "theta3" + at;
-    n[i + 2] = "x2r" + at;
-    n[i + 3] = "z2" + at;
+    n[i + 2] = "delta3" + at;
+    n[i + 3] = "delta4" + at;
   }
   for (int k = 0; k < ds_points; ++k) {
     const std::string at = "_ds" + percent(dsFraction(k));
@@ -39,14 +39,18 @@ std::vector<std::string> Parameterisation::names() const {
 }
 
 GaitParameters extendPerParameter(const GaitParameters& thesis17, const Parameterisation& par,
-                                  double ds_delta1, double ds_theta3) {
+                                  const std::array<double, 2>& ss_joints,
+                                  const std::array<double, 2>& ds) {
   GaitParameters out(par.size());
   out.head(kNumGaitParameters) = thesis17.head(kNumGaitParameters);
-  for (int k = 0; k < par.ss_points; ++k)
-    out.segment(par.ssPointIndex(k), 4) = thesis17.segment(kDelta1Int, 4);
+  for (int k = 0; k < par.ss_points; ++k) {
+    if (par.isFootPoint(k)) continue;
+    out.segment(par.ssPointIndex(k), 4) << thesis17(kDelta1Int), thesis17(kTheta3Int),
+        ss_joints[0], ss_joints[1];
+  }
   for (int k = 0; k < par.ds_points; ++k) {
-    out(par.dsPointIndex(k)) = ds_delta1;
-    out(par.dsPointIndex(k) + 1) = ds_theta3;
+    out(par.dsPointIndex(k)) = ds[0];
+    out(par.dsPointIndex(k) + 1) = ds[1];
   }
   return out;
 }

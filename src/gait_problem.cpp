@@ -162,7 +162,7 @@ GaitParameters parameterScales(const Parameterisation& par) {
   GaitParameters s(kNumGaitParameters);
   // α, δ1, θ3, d, α, δ1, θ3, δ1, θ3, x2r, z2, α̇, δ1*, δ2*, δ1*, δ2*, T_DS
   s << 0.1, 0.1, 0.1, 0.05, 0.1, 0.1, 0.1, 0.1, 0.1, 0.05, 0.02, 0.2, 0.5, 0.5, 0.5, 0.5, 0.05;
-  return extendPerParameter(s, par, 0.1, 0.1);
+  return extendPerParameter(s, par, {0.1, 0.1}, {0.1, 0.1});
 }
 
 VariableSet gaitVariables(const Model& m, const GaitParameters& initial,
@@ -176,8 +176,9 @@ VariableSet gaitVariables(const Model& m, const GaitParameters& initial,
       0.5, -0.01, 10.0, 10.0, 10.0, 10.0, 1.0;
   VariableSet v;
   v.names = par.names();
-  v.lower = extendPerParameter(lo, par, jl.knee_min, up - 1.0);
-  v.upper = extendPerParameter(hi, par, jl.knee_max, up + 1.0);
+  // Extra SS points: δ3 (inter-leg angle) within ±π, δ4 within the knee limits.
+  v.lower = extendPerParameter(lo, par, {-M_PI, jl.knee_min}, {jl.knee_min, up - 1.0});
+  v.upper = extendPerParameter(hi, par, {M_PI, jl.knee_max}, {jl.knee_max, up + 1.0});
   v.initial = initial.cwiseMax(v.lower).cwiseMin(v.upper);
   return v;
 }

@@ -2,8 +2,6 @@
 
 #include <stdexcept>
 
-#include "gaitopt/dynamics_pinned.hpp"
-#include "gaitopt/leg_geometry.hpp"
 
 namespace gaitopt {
 namespace {
@@ -25,15 +23,16 @@ GaitParameters refineParameters(const GaitEvaluator& coarse, const GaitParameter
     throw std::invalid_argument("cannot refine a step whose level " +
                                 std::to_string(e.failed_level) + " fails");
   const GaitMotion<double>& mo = e.motion;
-  GaitParameters out = extendPerParameter(p.head(kNumGaitParameters), fine, 0.0, 0.0);
+  GaitParameters out = extendPerParameter(p.head(kNumGaitParameters), fine, {0.0, 0.0}, {0.0, 0.0});
   for (int k = 0; k < fine.ss_points; ++k) {
     Vec5 q;
     q(0) = mo.alpha_iSS + fine.ssFraction(k) * (mo.alpha_fSS - mo.alpha_iSS);
     for (int j = 0; j < 4; ++j) q(j + 1) = mo.ss_path[j](q(0)).value;
-    const Vec2 foot2 = pinnedTerms(coarse.model(), q, Vec5(Vec5::Zero())).foot2;
-    const Vec2 hip = pinnedHip(coarse.model(), q);
-    out.segment(fine.ssPointIndex(k), 4) << q(1), trunkAngle(q(0), q(1), q(2)),
-        foot2(0) - hip(0), foot2(1);  // (3.19)
+    if (fine.isFootPoint(k)) {
+      out.segment(kDelta1Int, 4) = p.segment(kDelta1Int, 4);  // the thesis' α_int point
+      continue;
+    }
+    out.segment(fine.ssPointIndex(k), 4) << q(1), trunkAngle(q(0), q(1), q(2)), q(3), q(4);
   }
   for (int k = 0; k < fine.ds_points; ++k) {
     const double alpha = p(kAlphaIDS) + fine.dsFraction(k) * (p(kAlphaFDS) - p(kAlphaIDS));

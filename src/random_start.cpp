@@ -23,7 +23,7 @@ GaitParameters randomStartHalfWidths(const Parameterisation& par) {
   // α, δ1, θ3, d, α, δ1, θ3, δ1, θ3, x2r, z2, α̇, δ1*, δ2*, δ1*, δ2*, T_DS
   h << 0.15, 0.15, 0.1, 0.05, 0.15, 0.15, 0.1, 0.15, 0.1, 0.05, 0.02, 0.3, 0.5, 0.5, 0.5, 0.5,
       0.05;
-  return extendPerParameter(h, par, 0.15, 0.1);
+  return extendPerParameter(h, par, {0.15, 0.15}, {0.15, 0.1});
 }
 
 RandomStartBox randomStartBox(const GaitParameters& centre, const Parameterisation& par) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "gaitopt/gait_refinement.hpp"
+#include "gaitopt/gait_yaml.hpp"
 #include "test_gait_support.hpp"
 
 using namespace gaitopt;
@@ -23,7 +24,7 @@ TEST_CASE("parameter names and indices of a richer parameterisation", "[refine]"
   const std::vector<std::string> n = par.names();
   CHECK(n[par.ssPointIndex(1)] == "delta1_int");  // the middle point is the thesis' α_int
   CHECK(n[par.ssPointIndex(0)] == "delta1_ss25");
-  CHECK(n[par.ssPointIndex(2) + 3] == "z2_ss75");
+  CHECK(n[par.ssPointIndex(2) + 3] == "delta4_ss75");  // extra points carry joint angles
   CHECK(n[par.dsPointIndex(1) + 1] == "theta3_ds67");
   CHECK(par.label() == "miossec+ss3+ds2");
 }
@@ -74,4 +75,24 @@ TEST_CASE("exact gradients of a richer parameterisation equal finite differences
   // The extra parameters do move the criterion.
   CHECK(std::abs(g.dC_Gamma(par.ssPointIndex(0))) > 1.0);
   CHECK(std::abs(g.dC_Gamma(par.dsPointIndex(0))) > 1.0);
+}
+
+TEST_CASE("refinement is exact also where the swing knee hyperextends", "[refine]") {
+  // Chesse's Ipopt optimum passes through δ4 < −π during single support: a swing-foot position
+  // with the human-like IK branch would give another configuration there, joint angles do not.
+  const GaitFile g = loadGaitFile(test::sourcePath("configs/gait/chesse_0.85_ipopt.yaml"));
+  const GaitEvaluator coarse(g.robot, g.options, g.model_options);
+  const GaitEvaluation<double> e0 = coarse.evaluate(g.parameters);
+  double min_delta4 = 0.0;
+  for (int k = 0; k <= 20; ++k)
+    min_delta4 = std::min(min_delta4, e0.motion.ss_path[3](e0.motion.alpha_iSS + k / 20.0 *
+                                                              (e0.motion.alpha_fSS - e0.motion.alpha_iSS)).value);
+  CHECK(min_delta4 < -M_PI);  // the case this test is about
+  GaitOptions rich = g.options;
+  rich.parameterisation.ss_points = 3;
+  rich.parameterisation.ds_points = 1;
+  const GaitEvaluator fine(g.robot, rich, g.model_options);
+  const GaitEvaluation<double> e1 =
+      fine.evaluate(refineParameters(coarse, g.parameters, rich.parameterisation));
+  CHECK(e1.C_Gamma == Approx(e0.C_Gamma).epsilon(1e-9));
 }

@@ -198,6 +198,27 @@ TEST_CASE("optimize: the shipped configurations load with their documented value
       gaitopt::loadOptimizeConfig(sourcePath("configs/chevallereau_aoustin_0.75.yaml"));
   CHECK(ca.robot.name == "rabbit_chevallereau_aoustin");
   CHECK(*ca.speed == 0.75);
+
+  // The richer Chesse run starts from the shipped Ipopt optimum, refined exactly: same C_Γ.
+  const OptimizeConfig rich = gaitopt::loadOptimizeConfig(sourcePath("configs/chesse_0.85_rich.yaml"));
+  CHECK(rich.options.parameterisation.ss_points == 3);
+  CHECK(rich.options.parameterisation.ds_points == 1);
+  CHECK(rich.solver.backend == gaitopt::Backend::Ipopt);
+  const GaitEvaluator fine(rich.robot, rich.options, rich.model_options);
+  const gaitopt::GaitFile thesis_step =
+      gaitopt::loadGaitFile(sourcePath("configs/gait/chesse_0.85_ipopt.yaml"));
+  const GaitEvaluator coarse(thesis_step.robot, thesis_step.options, thesis_step.model_options);
+  CHECK(fine.evaluate(gaitopt::configuredInitialGuess(rich, fine.model())).C_Gamma ==
+        Approx(coarse.evaluate(thesis_step.parameters).C_Gamma).epsilon(1e-9));
+  // Its shipped result is feasible and improves on the thesis parameterisation by > 30 %.
+  const gaitopt::GaitFile rich_step =
+      gaitopt::loadGaitFile(sourcePath("configs/gait/chesse_0.85_rich.yaml"));
+  const GaitEvaluator rich_ev(rich_step.robot, rich_step.options, rich_step.model_options);
+  const auto e = rich_ev.evaluate(rich_step.parameters);
+  CHECK(e.failed_level == -1);
+  CHECK(e.C_Gamma < 0.7 * coarse.evaluate(thesis_step.parameters).C_Gamma);
+  CHECK(gaitopt::loadOptimizeConfig(sourcePath("configs/chesse_0.85_ipopt.yaml")).solver.backend ==
+        gaitopt::Backend::Ipopt);
 }
 
 TEST_CASE("optimize: configuration keys, defaults and pass-through Ipopt options",

@@ -62,17 +62,11 @@ Vector2<S> rearFootFromHip(const Model& m, const S& alpha, const S& delta1, cons
 }
 
 template <class S>
-void setReachAt(EvalContext<S>& c, int max_group, int index, const Vector2<S>& r,
-                ConstraintState st) {
+void setReach(EvalContext<S>& c, int max_group, const Vector2<S>& r, ConstraintState st) {
   const double L = c.model.robot.l4 + c.model.robot.l5;
   const S rho2 = r.squaredNorm();
-  c.set(max_group, index, rho2 - L * L + c.options.reach_margin, st);  // (3.36), (3.37)
-  c.set(max_group + 1, index, c.options.reach_margin - rho2, st);
-}
-
-template <class S>
-void setReach(EvalContext<S>& c, int max_group, const Vector2<S>& r, ConstraintState st) {
-  setReachAt(c, max_group, 0, r, st);
+  c.set(max_group, 0, rho2 - L * L + c.options.reach_margin, st);  // (3.36), (3.37)
+  c.set(max_group + 1, 0, c.options.reach_margin - rho2, st);
 }
 
 template <class S>
@@ -106,15 +100,16 @@ template <class S> bool boundaryStage(EvalContext<S>& c) {
   }
   mo.alpha_iSS = p(kAlphaFDS);  // (3.21)
   const Parameterisation& par = c.options.parameterisation;
-  std::vector<Vector2<S>> r_points(par.ss_points);
   mo.q_ss_points.assign(par.ss_points, Vector5<S>(Vector5<S>::Zero()));
+  Vector2<S> r_int;
   for (int k = 0; k < par.ss_points; ++k) {
     const int i = par.ssPointIndex(k);
     const S alpha = mo.alpha_iSS + par.ssFraction(k) * (mo.alpha_fSS - mo.alpha_iSS);
+    mo.q_ss_points[k] << alpha, p(i), delta2FromTheta3(alpha, p(i), p(i + 1)), p(i + 2), p(i + 3);
+    if (!par.isFootPoint(k)) continue;
     const Vector2<S> f1 = foot1FromHip(m, alpha, p(i));
-    r_points[k] = Vector2<S>(p(i + 2), f1(1) + p(i + 3));  // (3.19)
-    mo.q_ss_points[k](0) = alpha;
-    setReachAt(c, kReachMaxInt, k, r_points[k], D);
+    r_int = Vector2<S>(p(i + 2), f1(1) + p(i + 3));  // (3.19)
+    setReach(c, kReachMaxInt, r_int, D);
   }
   const double am = c.options.angle_margin;
   c.set(kAlphaOrderDS, 0, p(kAlphaFDS) - p(kAlphaIDS) + c.options.ds_alpha_range_min, D);  // (3.38)
@@ -125,10 +120,9 @@ template <class S> bool boundaryStage(EvalContext<S>& c) {
 
   mo.q_fDS = dsConfiguration(m, p(kAlphaFDS), p(kDelta1FDS), p(kTheta3FDS), r_fDS);
   mo.q_iSS = mo.q_fDS;
-  for (int k = 0; k < par.ss_points; ++k) {
-    const int i = par.ssPointIndex(k);
-    mo.q_ss_points[k] = dsConfiguration(m, S(mo.q_ss_points[k](0)), p(i), p(i + 1), r_points[k]);
-  }
+  const int mid = par.ss_points / 2;
+  mo.q_ss_points[mid] = dsConfiguration(m, S(mo.q_ss_points[mid](0)), p(kDelta1Int),
+                                        p(kTheta3Int), r_int);
   return true;
 }
 

@@ -4,7 +4,9 @@
 // ∂δ/∂α). A richer parameterisation appends interior configurations of the virtual
 // constraints: each extra SS point (δ1, θ3, x2r, z2 at a fixed fraction of the SS α range)
 // raises the SS polynomials' degree by one, each DS point (δ1, θ3 at a fraction of the DS α
-// range) the DS polynomials' degree (gait_polynomials.hpp).
+// range) the DS polynomials' degree (gait_polynomials.hpp). Extra SS points carry joint angles
+// (δ1, θ3, δ3, δ4) rather than the α_int point's swing-foot position, so they need no inverse
+// kinematics and any step refines into them exactly (a foot position loses the knee branch).
 #include <Eigen/Core>
 #include <array>
 #include <string>
@@ -49,8 +51,10 @@ struct Parameterisation {
   bool isThesis() const { return ss_points == 1 && ds_points == 0; }
   double ssFraction(int k) const { return (k + 1.0) / (ss_points + 1.0); }
   double dsFraction(int k) const { return (k + 1.0) / (ds_points + 1.0); }
-  // First of the 4 parameters (δ1, θ3, x2r, z2) of SS point k (0 ≤ k < ss_points).
+  // First of the 4 parameters of SS point k (0 ≤ k < ss_points): (δ1, θ3, x2r, z2) for the
+  // middle point α_int, (δ1, θ3, δ3, δ4) for the others.
   int ssPointIndex(int k) const;
+  bool isFootPoint(int k) const { return k == ss_points / 2; }
   // First of the 2 parameters (δ1, θ3) of DS point k.
   int dsPointIndex(int k) const;
   std::vector<std::string> names() const;
@@ -65,9 +69,10 @@ using GaitVector = Eigen::Matrix<S, Eigen::Dynamic, 1, 0, kMaxGaitParameters, 1>
 using GaitParameters = GaitVector<double>;
 
 // A per-parameter quantity (bound, scale, half-width) of the thesis' 17 extended to `par`: each
-// extra SS point takes the values of the α_int point (entries 7–10), each DS point `ds`
-// (for δ1, θ3).
+// extra SS point takes δ1, θ3 of the α_int point (entries 7–8) and `ss_joints` for δ3, δ4,
+// each DS point `ds` (for δ1, θ3).
 GaitParameters extendPerParameter(const GaitParameters& thesis17, const Parameterisation& par,
-                                  double ds_delta1, double ds_theta3);
+                                  const std::array<double, 2>& ss_joints,
+                                  const std::array<double, 2>& ds);
 
 }  // namespace gaitopt
