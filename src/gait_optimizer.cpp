@@ -174,49 +174,64 @@ const char* strategyName(HierarchyStrategy s) {
   return s == HierarchyStrategy::Staged ? "staged" : "direct";
 }
 
+namespace {
+
+// Staged strategy: project onto levels 0–1, then 0–4, as long as the evaluator finds a failed
+// level below 5 (a projection that stalls is restarted from its own point).
+GaitParameters repairLowerLevels(GaitEvaluationCache& cache, GaitParameters p,
+                                 const OptimizationRequest& req, std::ostream* log,
+                                 OptimizationResult& r) {
+  for (int pass = 0; pass < 2 * (req.solver.max_restarts + 1); ++pass) {
+    const int failed = cache.values(p).failed_level;
+    if (failed < 0 || failed > 4) break;
+    const int target = failed <= 1 ? 1 : 4;
+    p = project(cache, p, target, req.solver, "levels 0-" + std::to_string(target), log, r);
+  }
+  return p;
+}
+
+// The full problem from a computable point, with restarts and the final polish.
+GaitParameters solveFullProblem(GaitEvaluationCache& cache, GaitParameters p,
+                                const OptimizationRequest& req, std::ostream* log,
+                                OptimizationResult& r, NlpStatus& status) {
+  const GaitEvaluator& ev = cache.evaluator();
+  // Objective of order one at the start, so the solver's tolerances are relative.
+  const double scale = std::max(1.0, std::abs(criterionValue(cache.values(p), req.criterion)));
+  // A quasi-Newton model built across the kinks of the semi-infinite constraints can stall
+  // the solver slightly infeasible; a restart from its point rebuilds the model.
+  SolverSettings settings = req.solver;
+  for (int attempt = 0; attempt <= req.solver.max_restarts; ++attempt) {
+    const std::string label = attempt == 0 ? "full" : "full restart " + std::to_string(attempt);
+    const NlpSolution sol =
+        solveStage(cache, p, 5, kInterior, 0.0, settings, label, log, r, [&](NlpProblem& problem) {
+          problem.addCost(makeCriterionCost(cache, req.criterion, scale));
+          if (req.speed) problem.addConstraints(makeSpeedConstraint(cache, *req.speed));
+        });
+    // An NLopt run that broke down on undefined trial points restarts with Ipopt, which
+    // refuses them natively (with the exchange method, measured faster for Ipopt).
+    if (sol.status == NlpStatus::Failed && settings.backend != Backend::Ipopt) {
+      settings.backend = Backend::Ipopt;
+      settings.constraint_exchange = true;
+    }
+    if (!cache.values(sol.x).motion_computed) continue;  // restart from the last point
+    status = sol.status;
+    p = sol.x;
+    if (status == NlpStatus::Solved && meetsAll(ev, req, cache.values(p))) break;
+  }
+  return status == NlpStatus::Solved ? polish(cache, p, req, scale, log, r) : p;
+}
+
+}  // namespace
+
 OptimizationResult optimizeGait(const GaitEvaluator& ev, const OptimizationRequest& req,
                                 std::ostream* log) {
   const auto t0 = std::chrono::steady_clock::now();
   OptimizationResult r;
   GaitEvaluationCache cache(ev, req.solver.gradients);
   GaitParameters p = gaitVariables(ev.model(), req.initial, ev.options().parameterisation).initial;
-  if (req.solver.hierarchy == HierarchyStrategy::Staged) {
-    // Project onto levels 0–1, then 0–4, as long as the evaluator finds a failed level below 5
-    // (a projection that stalls is restarted from its own point).
-    for (int pass = 0; pass < 2 * (req.solver.max_restarts + 1); ++pass) {
-      const int failed = cache.values(p).failed_level;
-      if (failed < 0 || failed > 4) break;
-      const int target = failed <= 1 ? 1 : 4;
-      p = project(cache, p, target, req.solver, "levels 0-" + std::to_string(target), log, r);
-    }
-  }
+  if (req.solver.hierarchy == HierarchyStrategy::Staged) p = repairLowerLevels(cache, p, req, log, r);
   NlpStatus status = NlpStatus::Failed;
-  if (cache.values(p).motion_computed) {
-    // Objective of order one at the start, so the solver's tolerances are relative.
-    const double scale = std::max(1.0, std::abs(criterionValue(cache.values(p), req.criterion)));
-    // A quasi-Newton model built across the kinks of the semi-infinite constraints can stall
-    // the solver slightly infeasible; a restart from its point rebuilds the model.
-    SolverSettings settings = req.solver;
-    for (int attempt = 0; attempt <= req.solver.max_restarts; ++attempt) {
-      const std::string label = attempt == 0 ? "full" : "full restart " + std::to_string(attempt);
-      const NlpSolution sol =
-          solveStage(cache, p, 5, kInterior, 0.0, settings, label, log, r, [&](NlpProblem& problem) {
-            problem.addCost(makeCriterionCost(cache, req.criterion, scale));
-            if (req.speed) problem.addConstraints(makeSpeedConstraint(cache, *req.speed));
-          });
-      // An NLopt run that broke down on undefined trial points restarts with Ipopt, which
-      // refuses them natively (with the exchange method, measured faster for Ipopt).
-      if (sol.status == NlpStatus::Failed && settings.backend != Backend::Ipopt) {
-        settings.backend = Backend::Ipopt;
-        settings.constraint_exchange = true;
-      }
-      if (!cache.values(sol.x).motion_computed) continue;  // restart from the last point
-      status = sol.status;
-      p = sol.x;
-      if (status == NlpStatus::Solved && meetsAll(ev, req, cache.values(p))) break;
-    }
-    if (status == NlpStatus::Solved) p = polish(cache, p, req, scale, log, r);
-  }
+  if (cache.values(p).motion_computed) p = solveFullProblem(cache, p, req, log, r, status);
   r.parameters = p;
   r.evaluation = ev.evaluate(p);
   classify(ev, req, status, r);

@@ -210,13 +210,16 @@ TEST_CASE("optimize: the shipped configurations load with their documented value
   const GaitEvaluator coarse(thesis_step.robot, thesis_step.options, thesis_step.model_options);
   CHECK(fine.evaluate(gaitopt::configuredInitialGuess(rich, fine.model())).C_Gamma ==
         Approx(coarse.evaluate(thesis_step.parameters).C_Gamma).epsilon(1e-9));
-  // Its shipped result is feasible and improves on the thesis parameterisation by > 30 %.
+  // Its shipped result (see the file's header) meets every constraint to 1e-9, walks within
+  // 1e-5 m/s of 0.85 m/s, and improves on the thesis parameterisation by more than half.
   const gaitopt::GaitFile rich_step =
       gaitopt::loadGaitFile(sourcePath("configs/gait/chesse_0.85_rich.yaml"));
   const GaitEvaluator rich_ev(rich_step.robot, rich_step.options, rich_step.model_options);
   const auto e = rich_ev.evaluate(rich_step.parameters);
-  CHECK(e.failed_level == -1);
-  CHECK(e.C_Gamma < 0.7 * coarse.evaluate(thesis_step.parameters).C_Gamma);
+  CHECK(e.defined());
+  for (std::size_t k = 0; k < e.g.size(); ++k) CHECK(e.g[k] <= 1e-9);
+  CHECK(e.speed == Approx(0.85).margin(1e-5));
+  CHECK(e.C_Gamma < 0.5 * coarse.evaluate(thesis_step.parameters).C_Gamma);
   CHECK(gaitopt::loadOptimizeConfig(sourcePath("configs/chesse_0.85_ipopt.yaml")).solver.backend ==
         gaitopt::Backend::Ipopt);
 }
