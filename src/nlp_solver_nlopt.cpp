@@ -3,6 +3,7 @@
 // merit function backtracks, the role Ipopt's "cannot evaluate" plays.
 #include <algorithm>
 #include <nlopt.hpp>
+#include <utility>
 
 #include "gaitopt/nlp_solver.hpp"
 
@@ -13,19 +14,21 @@ constexpr double kUndefinedCost = 1e20;
 constexpr double kUndefinedViolation = 1e3;
 
 struct NloptContext {
+  NloptContext(NlpProblem& p, const NlpSettings& s, VectorX start)
+      : problem(p), settings(s), last_x(std::move(start)) {}
   NlpProblem& problem;
   const NlpSettings& settings;
   int evaluations = 0;
-  VectorX last_x;
   double violation = 0.0;  // largest constraint violation at the last constraint evaluation
   // The best point seen whose objective and constraints were both evaluated and whose largest
   // violation is within the problem's tolerance (NLopt keeps only points feasible to its own,
   // stricter test, so a run that ends oscillating could otherwise return its start).
-  VectorX last_f_x, best_x;
+  VectorX last_x;  // last point with a defined objective
+  VectorX best_x;  // best tolerance-feasible point seen
   double last_f = 0.0, best_f = 0.0;
   bool have_best = false;
   void consider(const VectorX& x, double tol) {
-    if (x.size() == last_f_x.size() && x == last_f_x && violation <= tol &&
+    if (x.size() == last_x.size() && x == last_x && violation <= tol &&
         (!have_best || last_f < best_f)) {
       best_x = x;
       best_f = last_f;
@@ -46,7 +49,6 @@ double objective(unsigned n, const double* x, double* grad, void* data) {
   if (grad) Eigen::Map<VectorX>(grad, n) = g;
   ++c->evaluations;
   c->last_x = v;
-  c->last_f_x = v;
   c->last_f = f;
   if (c->settings.log && c->settings.print_every > 0 && c->evaluations % c->settings.print_every == 0)
     *c->settings.log << "[" << c->settings.label << "] eval " << c->evaluations << "  objective "
@@ -120,7 +122,7 @@ NlpSolution solveWithNlopt(NlpProblem& problem, const NlpSettings& settings, Nlo
   const VariableSet& vars = problem.variables();
   const unsigned n = static_cast<unsigned>(vars.size());
   nlopt::opt opt(method == NloptMethod::Slsqp ? nlopt::LD_SLSQP : nlopt::LN_COBYLA, n);
-  NloptContext ctx{problem, settings, 0, vars.initial};
+  NloptContext ctx(problem, settings, vars.initial);
   opt.set_lower_bounds(std::vector<double>(vars.lower.data(), vars.lower.data() + n));
   opt.set_upper_bounds(std::vector<double>(vars.upper.data(), vars.upper.data() + n));
   opt.set_min_objective(objective, &ctx);

@@ -24,6 +24,7 @@ template <class S> struct GaitMotion {
   S f_iSS = S(0.0);                        // max(f(α_iSS), f_min)
   S alphadot_fSS = S(0.0), kappa = S(0.0);
   Eigen::Matrix<S, Eigen::Dynamic, 1> ss_phi, ss_time;  // Φ and t at the SS nodes
+  Eigen::Matrix<S, Eigen::Dynamic, 1> ss_alphadot, ss_alphaddot;  // (3.15), (3.16) there
 };
 
 // Double-support quadrature pieces, split where the force-distribution branch changes; each

@@ -241,16 +241,14 @@ template <class S> void zeroDynamicsStage(EvalContext<S>& c, std::vector<SsPathP
   const S a_cap = a_min - o.alphadot_margin;
   mo.alphadot_iSS = valueOf(a_i) < valueOf(a_cap) ? a_i : a_cap;
 
-  Eigen::Matrix<S, Eigen::Dynamic, 1> inv_rate(n);
-  for (int k = 0; k < n; ++k) {
-    S ad, add;
-    zeroDynamicsRates(pts[k], mo.ss_phi(k), mo, o.f_min, ad, add);
-    inv_rate(k) = 1.0 / ad;
-  }
+  mo.ss_alphadot.resize(n);
+  mo.ss_alphaddot.resize(n);
+  for (int k = 0; k < n; ++k)
+    zeroDynamicsRates(pts[k], mo.ss_phi(k), mo, o.f_min, mo.ss_alphadot(k), mo.ss_alphaddot(k));
+  const Eigen::Matrix<S, Eigen::Dynamic, 1> inv_rate = mo.ss_alphadot.cwiseInverse();
   mo.ss_time = cumulativeOverInterval(c.ss_grid, inv_rate, mo.alpha_iSS, mo.alpha_fSS);  // (3.51)
   mo.T_SS = mo.ss_time(n - 1);
-  S add;
-  zeroDynamicsRates(pts[n - 1], mo.ss_phi(n - 1), mo, o.f_min, mo.alphadot_fSS, add);
+  mo.alphadot_fSS = mo.ss_alphadot(n - 1);
 }
 
 // DS polynomials from the leg exchange (3.22)–(3.24) with the κ-normalisation.
@@ -547,9 +545,8 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
   for (auto& v : ss_int) v.resize(nss);
   for (auto& v : ds_int) v.resize(nds);
   for (int k = 0; k < nss; ++k) {
-    S ad, add;
-    zeroDynamicsRates(pts[k], mo.ss_phi(k), mo, o.f_min, ad, add);
-    const PhaseSample<S> s = ssSample(c.model, pts[k], ad, add);
+    const S& ad = mo.ss_alphadot(k);
+    const PhaseSample<S> s = ssSample(c.model, pts[k], ad, mo.ss_alphaddot(k));
     setPhaseConstraints(c, kTorqueSS, kJointLimitsSS, k, s, st);
     setContactConstraints(c, kFrictionConeSS, kNormalForceSS, 0, 1, k, s.R1, st);
     if (k > 0 && k < nss - 1) {  // (3.49) on the open interval (gap #16)
