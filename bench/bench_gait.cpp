@@ -27,10 +27,10 @@
 #include <vector>
 
 #include "bench_timing.hpp"
-#include "gaitopt/gait_evaluator.hpp"
-#include "gaitopt/gait_parameters.hpp"
-#include "gaitopt/json_writer.hpp"
-#include "gaitopt/robot_yaml.hpp"
+#include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/gait/parameters.hpp"
+#include "gaitopt/io/json_writer.hpp"
+#include "gaitopt/io/robot_file.hpp"
 
 namespace {
 

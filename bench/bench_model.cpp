@@ -20,12 +20,12 @@
 #include <vector>
 
 #include "bench_timing.hpp"
-#include "gaitopt/config_error.hpp"
-#include "gaitopt/dynamics_pinned.hpp"
-#include "gaitopt/inverse_dynamics.hpp"
-#include "gaitopt/json_writer.hpp"
-#include "gaitopt/model_derivatives.hpp"
-#include "gaitopt/robot_yaml.hpp"
+#include "gaitopt/io/config_error.hpp"
+#include "gaitopt/model/dynamics_pinned.hpp"
+#include "gaitopt/model/inverse_dynamics.hpp"
+#include "gaitopt/io/json_writer.hpp"
+#include "gaitopt/model/derivatives.hpp"
+#include "gaitopt/io/robot_file.hpp"
 
 namespace {
 

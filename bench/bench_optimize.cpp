@@ -35,11 +35,11 @@
 #include <vector>
 
 #include "bench_timing.hpp"
-#include "gaitopt/gait_evaluator.hpp"
-#include "gaitopt/gait_optimizer.hpp"
-#include "gaitopt/json_writer.hpp"
-#include "gaitopt/optimize_config.hpp"
-#include "gaitopt/speed_sweep.hpp"
+#include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/opt/optimizer.hpp"
+#include "gaitopt/io/json_writer.hpp"
+#include "gaitopt/io/optimize_config.hpp"
+#include "gaitopt/opt/sweep.hpp"
 
 namespace {
 

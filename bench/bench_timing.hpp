@@ -19,8 +19,8 @@
 #include <utility>
 #include <vector>
 
-#include "gaitopt/atomic_file.hpp"
-#include "gaitopt/json_writer.hpp"
+#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/json_writer.hpp"
 
 namespace gaitopt::bench {
 

@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "gaitopt/config_error.hpp"
+#include "gaitopt/io/config_error.hpp"
 
 namespace gaitopt::test {
 

@@ -2,9 +2,9 @@
 // Shared fixtures for the gait tests: a DEFINED step of the default robot (levels 0–4 hold;
 // some level-5 constraints are violated, which does not matter for consistency tests) and the
 // evaluator of the default robot with default options.
-#include "gaitopt/gait_evaluator.hpp"
-#include "gaitopt/gait_options.hpp"
-#include "gaitopt/gait_parameters.hpp"
+#include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/gait/options.hpp"
+#include "gaitopt/gait/parameters.hpp"
 #include "test_support.hpp"
 
 namespace gaitopt::test {

@@ -3,8 +3,8 @@
 #include <random>
 #include <string>
 
-#include "gaitopt/model.hpp"
-#include "gaitopt/robot_yaml.hpp"
+#include "gaitopt/model/model.hpp"
+#include "gaitopt/io/robot_file.hpp"
 
 namespace gaitopt::test {
 

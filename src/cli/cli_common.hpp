@@ -4,8 +4,8 @@
 #include <optional>
 #include <string>
 
-#include "gaitopt/gait_optimizer.hpp"
-#include "gaitopt/gait_problem.hpp"
+#include "gaitopt/opt/optimizer.hpp"
+#include "gaitopt/opt/gait_problem.hpp"
 
 namespace gaitopt::cli {
 

@@ -7,11 +7,11 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "gaitopt/atomic_file.hpp"
-#include "gaitopt/gait_evaluator.hpp"
-#include "gaitopt/gait_summary.hpp"
-#include "gaitopt/gait_trajectory.hpp"
-#include "gaitopt/gait_yaml.hpp"
+#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/gait/summary.hpp"
+#include "gaitopt/gait/trajectory.hpp"
+#include "gaitopt/io/gait_file.hpp"
 
 namespace gaitopt::cli {
 namespace {

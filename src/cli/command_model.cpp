@@ -2,8 +2,8 @@
 #include <iostream>
 
 #include "commands.hpp"
-#include "gaitopt/model_report.hpp"
-#include "gaitopt/robot_yaml.hpp"
+#include "gaitopt/io/model_report.hpp"
+#include "gaitopt/io/robot_file.hpp"
 
 namespace gaitopt::cli {
 namespace {

@@ -12,12 +12,12 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "gaitopt/gait_evaluator.hpp"
-#include "gaitopt/gait_optimizer.hpp"
-#include "gaitopt/gait_summary.hpp"
-#include "gaitopt/optimize_config.hpp"
-#include "gaitopt/optimize_output.hpp"
-#include "gaitopt/random_start.hpp"
+#include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/opt/optimizer.hpp"
+#include "gaitopt/gait/summary.hpp"
+#include "gaitopt/io/optimize_config.hpp"
+#include "gaitopt/io/optimize_output.hpp"
+#include "gaitopt/opt/random_start.hpp"
 
 namespace gaitopt::cli {
 namespace {
@@ -192,7 +192,7 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
     const OptimizationResult& r = runs[best].result;
     const GaitEvaluation<double>& e = r.evaluation;
 
-    // summary.json (with criterion and solver), gait.yaml, trajectory.csv: optimize_output.hpp.
+    // summary.json (with criterion and solver), gait.yaml, trajectory.csv: io/optimize_output.hpp.
     const OptimizationOutputs outputs =
         optimizationOutputs(evaluator, config, r, args->out, [&](JsonWriter& w) {
           if (args->random_starts > 0) {

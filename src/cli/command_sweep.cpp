@@ -1,4 +1,4 @@
-// `gaitopt sweep`: optimal steps over a list of walking speeds by continuation (speed_sweep.hpp)
+// `gaitopt sweep`: optimal steps over a list of walking speeds by continuation (opt/sweep.hpp)
 // → OUT/sweep.csv and one folder per speed (summary.json, gait.yaml, trajectory.csv, as written
 // by `gaitopt optimize`); `gaitopt sweep-merge`: the sweep.csv of several shards in one file.
 #include <cmath>
@@ -14,12 +14,12 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "gaitopt/atomic_file.hpp"
-#include "gaitopt/gait_evaluator.hpp"
-#include "gaitopt/gait_summary.hpp"
-#include "gaitopt/optimize_config.hpp"
-#include "gaitopt/optimize_output.hpp"
-#include "gaitopt/speed_sweep.hpp"
+#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/gait/summary.hpp"
+#include "gaitopt/io/optimize_config.hpp"
+#include "gaitopt/io/optimize_output.hpp"
+#include "gaitopt/opt/sweep.hpp"
 
 namespace gaitopt::cli {
 namespace {

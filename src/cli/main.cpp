@@ -4,7 +4,7 @@
 #include <nlopt.hpp>
 
 #include "commands.hpp"
-#include "gaitopt/config_error.hpp"
+#include "gaitopt/io/config_error.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{

@@ -1,0 +1,55 @@
+#pragma once
+// The named constraints of a walking step (§3.2.3), their hierarchy level (Fig. 3.2 as
+// reconstructed in digest §3.8) and their place in the flat constraint vector. Every value is
+// written g ≤ 0 when satisfied. Phase-wise (semi-infinite) constraints have one entry per node
+// of the phase's Chebyshev grid, so the optimiser sees a smooth, fixed-size set.
+#include <string>
+#include <vector>
+
+#include "gaitopt/gait/options.hpp"
+
+namespace gaitopt {
+
+enum ConstraintGroupId : int {
+  kReachMaxIDS, kReachMinIDS, kReachMaxFDS, kReachMinFDS, kReachMaxInt, kReachMinInt,  // level 0
+  kAlphaOrderDS, kAlphaOrderSS, kTibiaFront, kTibiaRear,                              // level 1
+  kFPositive,                                                                         // level 2
+  kAlphadotNegative, kNoFallBack,                                                     // level 3
+  kKappaPositive, kDsReachMax, kDsReachMin,                                           // level 4
+  kTorqueSS, kJointLimitsSS, kFrictionConeSS, kNormalForceSS, kClearance,             // level 5
+  kTorqueDS, kJointLimitsDS, kFrictionConeDS, kNormalForceDS, kDsMonotone,
+  kNumConstraintGroups
+};
+
+constexpr int kNumLevels = 6;
+
+struct ConstraintGroup {
+  std::string name;
+  int level;
+  std::string equation;  // thesis reference
+  int offset;            // first entry in the flat vector
+  int count;
+};
+
+// State of one entry after an evaluation.
+enum class ConstraintState : unsigned char {
+  NotComputed,  // a lower level failed and no saturation/extension reaches it
+  Extended,     // computed through a saturation (3.54)–(3.56) or extension (3.53) only
+  Defined,      // all lower levels hold
+};
+
+class ConstraintLayout {
+ public:
+  explicit ConstraintLayout(const GaitOptions& options);
+  const std::vector<ConstraintGroup>& groups() const { return groups_; }
+  const ConstraintGroup& operator[](int id) const { return groups_[id]; }
+  int size() const { return size_; }
+  int levelOf(int entry) const;
+
+ private:
+  std::vector<ConstraintGroup> groups_;
+  std::vector<int> entry_level_;
+  int size_ = 0;
+};
+
+}  // namespace gaitopt

@@ -1,0 +1,54 @@
+#pragma once
+// Result of evaluating one walking step: the constraint vector with its per-entry state, the
+// criteria, and the motion (polynomials and zero-dynamics solution) from which the trajectory is
+// sampled. Templated so the same evaluation runs on double and on an AD scalar.
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "gaitopt/gait/constraints.hpp"
+#include "gaitopt/gait/polynomials.hpp"
+#include "gaitopt/math/types.hpp"
+
+namespace gaitopt {
+
+template <class S> struct GaitMotion {
+  S d = S(0.0), T_DS = S(0.0), T_SS = S(0.0);
+  Vector5<S> q_iDS, q_fDS, q_iSS, q_fSS;
+  S alpha_iSS = S(0.0), alpha_fSS = S(0.0);
+  std::vector<Vector5<S>> q_ss_points;  // interior SS configurations (α_int for the thesis)
+  std::array<LocalPolynomial<S>, 4> ss_path;  // δ1..δ4 as functions of α (3.2)
+  LocalPolynomial<S> ds_delta1, ds_delta2;    // δ1, δ2 as functions of α (3.3)
+  LocalPolynomial<S> ds_alpha;                // α as a function of t (3.4)
+  S alphadot_iSS = S(0.0);                 // after the saturation (3.56)
+  S f_iSS = S(0.0);                        // max(f(α_iSS), f_min)
+  S alphadot_fSS = S(0.0), kappa = S(0.0);
+  Eigen::Matrix<S, Eigen::Dynamic, 1> ss_phi, ss_time;  // Φ and t at the SS nodes
+  Eigen::Matrix<S, Eigen::Dynamic, 1> ss_alphadot, ss_alphaddot;  // (3.15), (3.16) there
+};
+
+// Double-support quadrature pieces, split where the force-distribution branch changes; each
+// piece is integrated with its own branch (gait/ds_force_distribution.hpp).
+struct DsPieces {
+  std::vector<double> switch_times;  // from DS start [s]
+  std::vector<int> switch_function;  // which switching function vanishes there
+  std::vector<double> switch_rate;   // its time derivative there [1/s × its unit]
+  std::vector<int> branches;         // one per piece: switch_times.size() + 1
+};
+
+template <class S> struct GaitEvaluation {
+  std::vector<S> g;
+  std::vector<ConstraintState> state;
+  int failed_level = -1;         // lowest level with a violated constraint; −1: none
+  bool motion_computed = false;  // criteria and level-5 values exist (possibly extended)
+  bool numerically_undefined = false;  // the motion overflowed; reported as failed at level 4
+  S C_Gamma = S(0.0), C_E = S(0.0), W = S(0.0), C_frott = S(0.0);
+  S T_SS = S(0.0), T_DS = S(0.0), step_length = S(0.0), speed = S(0.0), alphadot_fSS = S(0.0);
+  GaitMotion<S> motion;
+  DsPieces ds_pieces;
+
+  // Defined in the thesis' sense: every level below the criterion's (0–4) holds.
+  bool defined() const { return failed_level < 0 || failed_level >= 5; }
+};
+
+}  // namespace gaitopt

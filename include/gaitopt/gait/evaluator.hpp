@@ -1,0 +1,56 @@
+#pragma once
+// Evaluator of Miossec's parameterised walking step: a constant description (model, options,
+// grids, constraint layout) and the per-call evaluation of values, or values with the exact
+// gradient with respect to the parameters (17 for the thesis, more for a richer one).
+#include <Eigen/Core>
+#include <algorithm>
+
+#include "gaitopt/math/chebyshev.hpp"
+#include "gaitopt/gait/evaluation.hpp"
+#include "gaitopt/gait/options.hpp"
+#include "gaitopt/gait/parameters.hpp"
+#include "gaitopt/model/model.hpp"
+
+namespace gaitopt {
+
+// Chebyshev grids of the phases: SS in α and DS in t for constraints and quadrature, and the
+// grid of each DS quadrature piece.
+struct GaitGrids {
+  explicit GaitGrids(const GaitOptions& o)
+      : ss(o.ss_nodes), ds(o.ds_nodes), ds_piece(o.ds_nodes) {}
+  ChebyshevGrid ss, ds, ds_piece;
+};
+
+// Values of one evaluation with first derivatives with respect to the parameters.
+struct GaitGradient {
+  GaitEvaluation<double> value;
+  Eigen::MatrixXd dg;  // rows: constraints, columns: parameters
+  GaitParameters dC_Gamma, dC_E, dW, dC_frott, dT_SS, dT_DS, dspeed;
+};
+
+class GaitEvaluator {
+ public:
+  GaitEvaluator(const RobotParams& robot, const GaitOptions& options,
+                const ModelOptions& model_options = {});
+  // p must have options().parameterisation.size() entries (std::invalid_argument otherwise).
+  GaitEvaluation<double> evaluate(const GaitParameters& p) const;
+  GaitGradient evaluateWithGradient(const GaitParameters& p) const;
+  int numParameters() const { return options_.parameterisation.size(); }
+
+  const Model& model() const { return model_; }
+  const GaitOptions& options() const { return options_; }
+  const ConstraintLayout& layout() const { return layout_; }
+  const ChebyshevGrid& ssGrid() const { return grids_.ss; }
+  const ChebyshevGrid& dsGrid() const { return grids_.ds; }
+
+ private:
+  Model model_;
+  GaitOptions options_;
+  ConstraintLayout layout_;
+  GaitGrids grids_;
+
+  template <class AD> GaitGradient gradientWith(const GaitParameters& p) const;
+  void checkSize(const GaitParameters& p) const;
+};
+
+}  // namespace gaitopt

@@ -1,0 +1,643 @@
+#pragma once
+// Evaluation of one walking step from its parameters (§3.3), templated on the scalar so the
+// same code yields values (double) and exact gradients (forward-mode AD). Stages follow the
+// hierarchy: boundary geometry (levels 0–1), zero dynamics and DS boundary (levels 2–4, with the
+// saturations (3.54)–(3.56)), then the full motion (level 5 and criteria).
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+#include "gaitopt/math/chebyshev.hpp"
+#include "gaitopt/gait/ds_force_distribution.hpp"
+#include "gaitopt/gait/evaluation.hpp"
+#include "gaitopt/gait/options.hpp"
+#include "gaitopt/gait/parameters.hpp"
+#include "gaitopt/model/inverse_dynamics.hpp"
+#include "gaitopt/gait/leg_geometry.hpp"
+#include "gaitopt/model/torque_envelope.hpp"
+
+namespace gaitopt::detail {
+
+template <class S> struct EvalContext {
+  const Model& model;
+  const GaitOptions& options;
+  const ConstraintLayout& layout;
+  const ChebyshevGrid& ss_grid;
+  const ChebyshevGrid& ds_grid;
+  const ChebyshevGrid& piece_grid;
+  const GaitVector<S>& p;
+  GaitEvaluation<S>& out;
+  const DsPieces* known_pieces;  // DS quadrature pieces found by a double pass, or null
+
+  void set(int group, int index, const S& value, ConstraintState state) {
+    const int k = layout[group].offset + index;
+    out.g[k] = value;
+    out.state[k] = state;
+  }
+  // Lowest level ≤ max_level with a violated computed entry, or −1.
+  int lowestViolated(int max_level) const {
+    int lowest = -1;
+    for (int k = 0; k < layout.size(); ++k)
+      if (out.state[k] != ConstraintState::NotComputed && layout.levelOf(k) <= max_level &&
+          valueOf(out.g[k]) > 0.0 && (lowest < 0 || layout.levelOf(k) < lowest))
+        lowest = layout.levelOf(k);
+    return lowest;
+  }
+  ConstraintState stateAbove(int level) const {
+    const int failed = lowestViolated(level);
+    return failed < 0 ? ConstraintState::Defined : ConstraintState::Extended;
+  }
+};
+
+template <class S> S squared(const S& x) { return x * x; }
+
+// ---------------------------------------------------------------------------------------------
+// Levels 0–1: boundary configurations.
+
+// Hip-to-foot-2 vector with foot 2 on the ground at x = −d (corrected (3.18)).
+template <class S>
+Vector2<S> rearFootFromHip(const Model& m, const S& alpha, const S& delta1, const S& d) {
+  const Vector2<S> f1 = foot1FromHip(m, alpha, delta1);
+  return Vector2<S>(f1(0) - d, f1(1));
+}
+
+template <class S>
+void setReach(EvalContext<S>& c, int max_group, const Vector2<S>& r, ConstraintState st) {
+  const double L = c.model.robot.l4 + c.model.robot.l5;
+  const S rho2 = r.squaredNorm();
+  c.set(max_group, 0, rho2 - L * L + c.options.reach_margin, st);  // (3.36), (3.37)
+  c.set(max_group + 1, 0, c.options.reach_margin - rho2, st);
+}
+
+template <class S>
+Vector5<S> dsConfiguration(const Model& m, const S& alpha, const S& delta1, const S& theta3,
+                           const Vector2<S>& r) {
+  const Vector2<S> leg2 = leg2InverseKinematics(m, alpha, delta1, r);
+  return Vector5<S>(alpha, delta1, delta2FromTheta3(alpha, delta1, theta3), leg2(0), leg2(1));
+}
+
+template <class S> bool boundaryStage(EvalContext<S>& c) {
+  const GaitVector<S>& p = c.p;
+  const Model& m = c.model;
+  GaitMotion<S>& mo = c.out.motion;
+  const auto D = ConstraintState::Defined;
+  mo.d = p(kStepLength);
+  mo.T_DS = p(kTDS);
+  const Vector2<S> r_iDS = rearFootFromHip(m, p(kAlphaIDS), p(kDelta1IDS), mo.d);
+  const Vector2<S> r_fDS = rearFootFromHip(m, p(kAlphaFDS), p(kDelta1FDS), mo.d);
+  setReach(c, kReachMaxIDS, r_iDS, D);
+  setReach(c, kReachMaxFDS, r_fDS, D);
+
+  const double L = m.robot.l4 + m.robot.l5;
+  const bool ids_ok = valueOf(r_iDS.squaredNorm()) < L * L && valueOf(r_iDS.squaredNorm()) > 0.0;
+  if (ids_ok) {
+    mo.q_iDS = dsConfiguration(m, p(kAlphaIDS), p(kDelta1IDS), p(kTheta3IDS), r_iDS);
+    mo.q_fSS = exchangeLegs(mo.q_iDS);  // (3.22)
+    mo.alpha_fSS = mo.q_fSS(0);
+  } else {
+    using std::atan2;  // (3.53): rear tibia along the ankle–hip axis
+    mo.alpha_fSS = atan2(r_iDS(0), -r_iDS(1));
+  }
+  mo.alpha_iSS = p(kAlphaFDS);  // (3.21)
+  const Parameterisation& par = c.options.parameterisation;
+  mo.q_ss_points.assign(par.ss_points, Vector5<S>(Vector5<S>::Zero()));
+  Vector2<S> r_int;
+  for (int k = 0; k < par.ss_points; ++k) {
+    const int i = par.ssPointIndex(k);
+    const S alpha = mo.alpha_iSS + par.ssFraction(k) * (mo.alpha_fSS - mo.alpha_iSS);
+    mo.q_ss_points[k] << alpha, p(i), delta2FromTheta3(alpha, p(i), p(i + 1)), p(i + 2), p(i + 3);
+    if (!par.isFootPoint(k)) continue;
+    const Vector2<S> f1 = foot1FromHip(m, alpha, p(i));
+    r_int = Vector2<S>(p(i + 2), f1(1) + p(i + 3));  // (3.19)
+    setReach(c, kReachMaxInt, r_int, D);
+  }
+  const double am = c.options.angle_margin;
+  c.set(kAlphaOrderDS, 0, p(kAlphaFDS) - p(kAlphaIDS) + c.options.ds_alpha_range_min, D);  // (3.38)
+  c.set(kAlphaOrderSS, 0, mo.alpha_fSS - p(kAlphaFDS) + am, D);
+  c.set(kTibiaFront, 0, p(kAlphaIDS) - 0.5 * M_PI + am, D);  // (3.40)
+  c.set(kTibiaRear, 0, -0.5 * M_PI - mo.alpha_fSS + am, D);
+  if (c.lowestViolated(1) >= 0) return false;
+
+  mo.q_fDS = dsConfiguration(m, p(kAlphaFDS), p(kDelta1FDS), p(kTheta3FDS), r_fDS);
+  mo.q_iSS = mo.q_fDS;
+  const int mid = par.ss_points / 2;
+  mo.q_ss_points[mid] = dsConfiguration(m, S(mo.q_ss_points[mid](0)), p(kDelta1Int),
+                                        p(kTheta3Int), r_int);
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Levels 2–4: SS polynomials, zero dynamics, DS boundary.
+
+// ∂q/∂α at an SS boundary: δ1*, δ2* given, δ3*, δ4* from zero foot-2 velocity D2 q* = 0 (3.20).
+template <class S>
+Vector5<S> liftOffSlopes(const Model& m, const Vector5<S>& q, const S& d1s, const S& d2s) {
+  const ChainState<S> st = chainState(m, q, Vector5<S>(Vector5<S>::Zero()));
+  const Matrix25<S> D2 = chainPointJacobian(m, m.pinned.foot2, st);
+  Eigen::Matrix<S, 2, 2> D34;
+  D34 << D2(0, 3), D2(0, 4), D2(1, 3), D2(1, 4);
+  const Vector2<S> rhs = -(D2.col(0) + D2.col(1) * d1s);
+  const Vector2<S> s34 = D34.inverse() * rhs;
+  return Vector5<S>(S(1.0), d1s, d2s, s34(0), s34(1));
+}
+
+template <class S> void buildSsPaths(EvalContext<S>& c, Vector5<S>& qs_iSS, Vector5<S>& qs_fSS) {
+  const GaitVector<S>& p = c.p;
+  GaitMotion<S>& mo = c.out.motion;
+  qs_iSS = liftOffSlopes(c.model, mo.q_iSS, p(kDelta1sISS), p(kDelta2sISS));
+  qs_fSS = liftOffSlopes(c.model, mo.q_fSS, p(kDelta1sFSS), p(kDelta2sFSS));
+  std::vector<S> alphas;
+  for (const Vector5<S>& q : mo.q_ss_points) alphas.push_back(q(0));
+  for (int j = 0; j < 4; ++j) {  // (3.25), or higher degree with more interior points
+    std::vector<S> values;
+    for (const Vector5<S>& q : mo.q_ss_points) values.push_back(q(j + 1));
+    mo.ss_path[j] = polynomialThrough(mo.alpha_iSS, mo.q_iSS(j + 1), qs_iSS(j + 1), alphas, values,
+                                      mo.alpha_fSS, mo.q_fSS(j + 1), qs_fSS(j + 1));
+  }
+}
+
+// Model terms along the SS path at one α, independent of the time law:
+// τ = tau_a α̈ + tau_c α̇² + G and the CoM acceleration com_a α̈ + com_c α̇².
+template <class S> struct SsPathPoint {
+  Vector5<S> q, qs, qss;
+  Vector5<S> tau_a, tau_c, G;
+  Vector2<S> com_a, com_c, foot2, com;
+};
+
+template <class S>
+SsPathPoint<S> ssPathPoint(const Model& m, const GaitMotion<S>& mo, const S& alpha) {
+  SsPathPoint<S> pt;
+  pt.q(0) = alpha;
+  pt.qs(0) = S(1.0);
+  pt.qss(0) = S(0.0);
+  for (int j = 0; j < 4; ++j) {
+    const PolyValue<S> v = mo.ss_path[j](alpha);
+    pt.q(j + 1) = v.value;
+    pt.qs(j + 1) = v.first;
+    pt.qss(j + 1) = v.second;
+  }
+  // With q̇ := q*: C(q, q*) and the CoM terms per unit α̇²; A only through products.
+  const ChainState<S> st = chainState(m, pt.q, pt.qs);
+  const ChainCoefficients& c = m.pinned;
+  const Matrix5<S> Mt = chainInertiaTheta(c, m.inertia, st);
+  pt.tau_a = inertiaTimes(m, Mt, pt.qs);  // f = tau_a(0) (3.11)
+  pt.tau_c = inertiaTimes(m, Mt, pt.qss) +
+             constantTimes(m.theta_map_transpose, chainCoriolisTheta(c, st));  // f' (3.11)
+  pt.G = constantTimes(m.theta_map_transpose, chainGravityTheta(c, m.gravity, st));  // G1 = M g x_G
+  const double inv_m = 1.0 / m.total_mass;
+  pt.com_a = chainPointVelocity(c.b, st) * inv_m;
+  pt.com_c = chainPointAcceleration(c.b, st, constantTimes(m.theta_map, pt.qss)) * inv_m;
+  pt.foot2 = chainPoint(c.foot2, st);
+  pt.com = chainPoint(c.b, st) * inv_m;
+  return pt;
+}
+
+template <class S> S saturatedF(const S& f, double f_min) {
+  return valueOf(f) > f_min ? f : S(f_min);  // (3.54)
+}
+
+// (3.15), (3.16) with the saturated f.
+template <class S>
+void zeroDynamicsRates(const SsPathPoint<S>& pt, const S& phi, const GaitMotion<S>& mo,
+                       double f_min, S& alphadot, S& alphaddot) {
+  using std::sqrt;
+  const S f = saturatedF(S(pt.tau_a(0)), f_min);
+  const S sigma2 = phi + squared(S(mo.f_iSS * mo.alphadot_iSS));
+  alphadot = -sqrt(valueOf(sigma2) > 0.0 ? sigma2 : S(1e-300)) / f;
+  alphaddot = -(pt.G(0) + pt.tau_c(0) * alphadot * alphadot) / f;
+}
+
+template <class S> void zeroDynamicsStage(EvalContext<S>& c, std::vector<SsPathPoint<S>>& pts) {
+  using std::sqrt;
+  const GaitOptions& o = c.options;
+  GaitMotion<S>& mo = c.out.motion;
+  const int n = c.ss_grid.size();
+  const auto alphas = mappedNodes(c.ss_grid, mo.alpha_iSS, mo.alpha_fSS);
+  Eigen::Matrix<S, Eigen::Dynamic, 1> dphi(n);
+  pts.resize(n);
+  const ConstraintState st = c.stateAbove(1);
+  for (int k = 0; k < n; ++k) {
+    pts[k] = ssPathPoint(c.model, mo, S(alphas(k)));
+    const S f = pts[k].tau_a(0);
+    c.set(kFPositive, k, o.f_min - f, st);                           // (3.45)
+    dphi(k) = -2.0 * pts[k].G(0) * saturatedF(f, o.f_min);           // (3.14), (3.54)
+  }
+  mo.ss_phi = cumulativeOverInterval(c.ss_grid, dphi, mo.alpha_iSS, mo.alpha_fSS);
+  mo.f_iSS = saturatedF(S(pts[0].tau_a(0)), o.f_min);
+
+  const S a_i = c.p(kAlphadotISS);
+  const ConstraintState st3 = c.stateAbove(2);
+  c.set(kAlphadotNegative, 0, a_i + o.alphadot_margin, st3);
+  int worst = 0;
+  for (int k = 0; k < n; ++k) {
+    // (3.55) divided by f_i²: a margin ε² on σ²/f_i².
+    c.set(kNoFallBack, k,
+          -(mo.ss_phi(k) / squared(mo.f_iSS) + a_i * a_i) + squared(o.alphadot_margin), st3);
+    if (valueOf(mo.ss_phi(k)) < valueOf(mo.ss_phi(worst))) worst = k;
+  }
+  // (3.56), with the corrected sign of ε (α̇ < 0).
+  const S phi_min = mo.ss_phi(worst);
+  const S a_min = valueOf(phi_min) < 0.0 ? S(-sqrt(S(-phi_min)) / mo.f_iSS) : S(0.0);
+  const S a_cap = a_min - o.alphadot_margin;
+  mo.alphadot_iSS = valueOf(a_i) < valueOf(a_cap) ? a_i : a_cap;
+
+  mo.ss_alphadot.resize(n);
+  mo.ss_alphaddot.resize(n);
+  for (int k = 0; k < n; ++k)
+    zeroDynamicsRates(pts[k], mo.ss_phi(k), mo, o.f_min, mo.ss_alphadot(k), mo.ss_alphaddot(k));
+  const Eigen::Matrix<S, Eigen::Dynamic, 1> inv_rate = mo.ss_alphadot.cwiseInverse();
+  mo.ss_time = cumulativeOverInterval(c.ss_grid, inv_rate, mo.alpha_iSS, mo.alpha_fSS);  // (3.51)
+  mo.T_SS = mo.ss_time(n - 1);
+  mo.alphadot_fSS = mo.ss_alphadot(n - 1);
+}
+
+// DS polynomials from the leg exchange (3.22)–(3.24) with the κ-normalisation.
+template <class S> void dsBoundaryStage(EvalContext<S>& c, const Vector5<S>& qs_iSS,
+                                        const Vector5<S>& qs_fSS) {
+  GaitMotion<S>& mo = c.out.motion;
+  const GaitVector<S>& p = c.p;
+  mo.kappa = 1.0 + qs_fSS(1) + qs_fSS(3) - qs_fSS(4);
+  c.set(kKappaPositive, 0, c.options.kappa_min - mo.kappa, c.stateAbove(3));
+  const S kappa = valueOf(mo.kappa) > c.options.kappa_min ? mo.kappa : S(c.options.kappa_min);
+  const S alphadot_iDS = kappa * mo.alphadot_fSS;
+  const S d1s_iDS = qs_fSS(4) / kappa, d2s_iDS = (qs_fSS(2) + qs_fSS(3)) / kappa;
+  const Parameterisation& par = c.options.parameterisation;
+  std::vector<S> alphas, d1, d2;
+  for (int k = 0; k < par.ds_points; ++k) {
+    const int i = par.dsPointIndex(k);
+    alphas.push_back(p(kAlphaIDS) + par.dsFraction(k) * (p(kAlphaFDS) - p(kAlphaIDS)));
+    d1.push_back(p(i));
+    d2.push_back(delta2FromTheta3(alphas.back(), p(i), p(i + 1)));
+  }
+  mo.ds_delta1 = polynomialThrough(p(kAlphaIDS), p(kDelta1IDS), d1s_iDS, alphas, d1, p(kAlphaFDS),
+                                   p(kDelta1FDS), S(qs_iSS(1)));  // (3.26)
+  mo.ds_delta2 = polynomialThrough(p(kAlphaIDS), S(mo.q_iDS(2)), d2s_iDS, alphas, d2,
+                                   p(kAlphaFDS), S(mo.q_fDS(2)), S(qs_iSS(2)));
+  mo.ds_alpha = cubicHermite(S(0.0), p(kAlphaIDS), alphadot_iDS, p(kTDS), p(kAlphaFDS),
+                             mo.alphadot_iSS);  // (3.27)
+}
+
+// Prescribed DS coordinates α, δ1, δ2 and their rates at time t.
+template <class S> struct DsPrescribed {
+  S alpha, alphad, alphadd, d1, d1d, d1dd, d2, d2d, d2dd;
+};
+
+template <class S> DsPrescribed<S> dsPrescribed(const GaitMotion<S>& mo, const S& t) {
+  DsPrescribed<S> r;
+  const PolyValue<S> a = mo.ds_alpha(t);
+  r.alpha = a.value;
+  r.alphad = a.first;
+  r.alphadd = a.second;
+  const PolyValue<S> d1 = mo.ds_delta1(r.alpha), d2 = mo.ds_delta2(r.alpha);
+  r.d1 = d1.value;
+  r.d1d = d1.first * r.alphad;
+  r.d1dd = d1.second * r.alphad * r.alphad + d1.first * r.alphadd;
+  r.d2 = d2.value;
+  r.d2d = d2.first * r.alphad;
+  r.d2dd = d2.second * r.alphad * r.alphad + d2.first * r.alphadd;
+  return r;
+}
+
+template <class S> bool dsReachStage(EvalContext<S>& c) {
+  GaitMotion<S>& mo = c.out.motion;
+  const auto ts = mappedNodes(c.ds_grid, S(0.0), mo.T_DS);
+  const double L = c.model.robot.l4 + c.model.robot.l5;
+  const ConstraintState st = c.stateAbove(3);
+  bool reachable = true;  // the DS inverse kinematics exists at every node
+  for (int k = 0; k < c.ds_grid.size(); ++k) {
+    const DsPrescribed<S> pr = dsPrescribed(mo, S(ts(k)));
+    const S rho2 = rearFootFromHip(c.model, pr.alpha, pr.d1, mo.d).squaredNorm();
+    c.set(kDsReachMax, k, rho2 - L * L + c.options.reach_margin, st);  // (3.41)
+    c.set(kDsReachMin, k, c.options.reach_margin - rho2, st);
+    reachable = reachable && valueOf(rho2) < L * L && valueOf(rho2) > 0.0;
+  }
+  return reachable;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Level 5 and criteria.
+
+template <class S> struct PhaseSample {
+  int branch = 0;  // DS force-distribution formula (gait/ds_force_distribution.hpp)
+  std::array<S, 6> switching{};
+  Vector5<S> q, qd, qdd;
+  Vector4<S> gamma_star, omega;
+  Vector2<S> R1, R2, foot2, com;
+};
+
+template <class S>
+PhaseSample<S> ssSample(const Model& m, const SsPathPoint<S>& pt, const S& alphadot,
+                        const S& alphaddot) {
+  PhaseSample<S> s;
+  const S ad2 = alphadot * alphadot;
+  s.q = pt.q;
+  s.qd = pt.qs * alphadot;
+  s.qdd = pt.qs * alphaddot + pt.qss * ad2;
+  const Vector5<S> tau = pt.tau_a * alphaddot + pt.tau_c * ad2 + pt.G;
+  s.omega = jointSpeeds(s.qd);
+  s.gamma_star = solveDGamma25(Vector4<S>(tau.template tail<4>())) +
+                 frictionTorque(m, s.omega, SignMode::Smooth);  // (3.57), (1.21)
+  const Vector2<S> acc = pt.com_a * alphaddot + pt.com_c * ad2;
+  s.R1 = Vector2<S>(m.total_mass * acc(0), m.total_mass * (acc(1) + m.gravity));  // (1.36)
+  s.R2.setZero();
+  s.foot2 = pt.foot2;
+  s.com = pt.com;
+  return s;
+}
+
+template <class S>
+PhaseSample<S> dsSample(const Model& m, const GaitOptions& o, const GaitMotion<S>& mo,
+                        const S& t, int forced_branch = kBranchFree) {
+  const DsPrescribed<S> pr = dsPrescribed(mo, t);
+  PhaseSample<S> s;
+  const Vector2<S> leg2 = leg2InverseKinematics(m, pr.alpha, pr.d1,
+                                                rearFootFromHip(m, pr.alpha, pr.d1, mo.d));
+  s.q = Vector5<S>(pr.alpha, pr.d1, pr.d2, leg2(0), leg2(1));
+  ChainState<S> st = chainState(m, s.q, Vector5<S>(Vector5<S>::Zero()));
+  const Matrix25<S> D2 = chainPointJacobian(m, m.pinned.foot2, st);
+  Eigen::Matrix<S, 2, 2> D34;
+  D34 << D2(0, 3), D2(0, 4), D2(1, 3), D2(1, 4);
+  const Eigen::Matrix<S, 2, 2> D34inv = D34.inverse();
+  const Vector2<S> v34 = -D34inv * (D2.col(0) * pr.alphad + D2.col(1) * pr.d1d);  // (1.34)
+  s.qd = Vector5<S>(pr.alphad, pr.d1d, pr.d2d, v34(0), v34(1));
+  st.theta_dot = constantTimes(m.theta_map, s.qd);
+  const Vector2<S> H2 = chainPointBias(m.pinned.foot2, st);
+  const Vector2<S> a34 = -D34inv * (D2.col(0) * pr.alphadd + D2.col(1) * pr.d1dd + H2);
+  s.qdd = Vector5<S>(pr.alphadd, pr.d1dd, pr.d2dd, a34(0), a34(1));  // (1.35)
+  const PinnedMotionForces<S> forces = pinnedMotionForces(m, st, s.qdd);
+  const DoubleSupportAffine<S> aff = doubleSupportAffine(m, forces, s.qd, SignMode::Smooth);
+  const double M = m.total_mass;
+  const S R2z0 = aff.R2z0;                                          // (3.58)
+  const S R1z0 = M * (aff.com_acceleration(1) + m.gravity) - R2z0;  // (3.59) corrected
+  const DsBounds<S> bounds = r2xBounds(R1z0, R2z0, S(M * aff.com_acceleration(0)),
+                                       o.friction_coefficient,
+                                       forced_branch >= 0 ? forced_branch % 4 : kBranchFree);
+  s.omega = jointSpeeds(s.qd);
+  const DsChoice<S> choice = o.ds_distribution == DsDistribution::Torque
+                                ? r2xMinTorque(aff.J, aff.K, bounds, forced_branch)
+                                : r2xMinPower(aff.J, aff.K, s.omega, jouleCoefficient(m), bounds,
+                                              forced_branch);
+  const S& R2x = choice.r2x;
+  s.branch = choice.branch;
+  s.switching = choice.switching;
+  s.gamma_star = aff.J - aff.K * R2x;  // (3.62)
+  s.R2 = Vector2<S>(R2x, R2z0 + aff.R2z_slope * R2x);
+  s.R1 = Vector2<S>(M * aff.com_acceleration(0), M * (aff.com_acceleration(1) + m.gravity)) - s.R2;
+  s.foot2 = forces.foot2;
+  s.com = forces.com;
+  return s;
+}
+
+template <class S>
+void setPhaseConstraints(EvalContext<S>& c, int torque_group, int limits_group, int k,
+                         const PhaseSample<S>& s, ConstraintState st) {
+  const RobotParams& r = c.model.robot;
+  const double jm = c.options.joint_limit_margin;
+  for (int j = 0; j < 4; ++j) {  // (3.46), (3.47)
+    const S limit = torqueLimit(r.envelope, s.omega(j), c.options.full_torque_envelope);
+    c.set(torque_group, 8 * k + 2 * j, s.gamma_star(j) - limit, st);
+    c.set(torque_group, 8 * k + 2 * j + 1, -s.gamma_star(j) - limit, st);
+  }
+  const std::array<S, 4> angles = {s.q(1), s.q(2), s.q(2) + s.q(3), s.q(4)};  // (3.42)
+  for (int j = 0; j < 4; ++j) {
+    const bool knee = j == 0 || j == 3;
+    const double lo = knee ? r.limits.knee_min : r.limits.hip_min;
+    const double hi = knee ? r.limits.knee_max : r.limits.hip_max;
+    c.set(limits_group, 8 * k + 2 * j, angles[j] - hi + jm, st);
+    c.set(limits_group, 8 * k + 2 * j + 1, lo - angles[j] + jm, st);
+  }
+}
+
+template <class S>
+void setContactConstraints(EvalContext<S>& c, int cone_group, int normal_group, int foot,
+                           int feet, int k, const Vector2<S>& R, ConstraintState st) {
+  const double f = c.options.friction_coefficient;
+  c.set(cone_group, 2 * (feet * k + foot), -f * R(1) - R(0), st);  // (3.48)
+  c.set(cone_group, 2 * (feet * k + foot) + 1, -f * R(1) + R(0), st);
+  c.set(normal_group, feet * k + foot, c.options.min_normal_force - R(1), st);
+}
+
+// Integrands of the criteria at one sample: Γ*ᵀΓ*, max(0, electrical power), Σ|Γ*_j ω_j|, Γ*ᵀω.
+template <class S> std::array<S, 4> criteriaIntegrands(const Model& m, const PhaseSample<S>& s) {
+  const S torque2 = s.gamma_star.squaredNorm();
+  const S mech = s.gamma_star.dot(s.omega);
+  const S power = mech + jouleCoefficient(m) * torque2;  // (3.32)
+  S absolute(0.0);
+  for (int j = 0; j < 4; ++j) {
+    const S pj = s.gamma_star(j) * s.omega(j);
+    absolute += valueOf(pj) < 0.0 ? S(-pj) : pj;  // (3.147)
+  }
+  return {torque2, valueOf(power) > 0.0 ? power : S(0.0), absolute, mech};
+}
+
+template <class S>
+std::array<S, 4> integrateEach(const ChebyshevGrid& grid,
+                               const std::array<Eigen::Matrix<S, Eigen::Dynamic, 1>, 4>& f,
+                               const S& a, const S& b) {
+  std::array<S, 4> r;
+  for (int i = 0; i < 4; ++i) r[i] = integrateOverInterval(grid, f[i], a, b);
+  return r;
+}
+
+// Time in [lo, hi] where switching function i changes sign: Illinois-modified regula falsi.
+template <class F> double switchTime(const F& fn, double lo, double f_lo, double hi, double f_hi) {
+  int side = 0;
+  for (int it = 0; it < 80 && hi - lo > 1e-12; ++it) {
+    double t = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);  // secant unusable (huge or equal values)
+    const double ft = fn(t);
+    if (!std::isfinite(ft)) return 0.5 * (lo + hi);
+    if (ft == 0.0) return t;
+    if ((ft < 0.0) == (f_lo < 0.0)) {
+      lo = t;
+      f_lo = ft;
+      if (side == -1) f_hi *= 0.5;
+      side = -1;
+    } else {
+      hi = t;
+      f_hi = ft;
+      if (side == 1) f_lo *= 0.5;
+      side = 1;
+    }
+  }
+  return 0.5 * (lo + hi);
+}
+
+// DS pieces: the times where the force-distribution branch changes, from the sign changes of
+// its continuous switching functions between grid nodes, and the branch inside each piece. The
+// criteria integrands are continuous there, so the switch times carry no derivative (the Leibniz
+// terms cancel) and are plain doubles.
+template <class S>
+DsPieces dsPieces(EvalContext<S>& c, const Eigen::Matrix<S, Eigen::Dynamic, 1>& ts,
+                  const std::vector<int>& branch,
+                  const std::vector<std::array<double, 6>>& switching) {
+  const auto phi = [&c](double t, int i) {
+    return valueOf(dsSample(c.model, c.options, c.out.motion, S(t)).switching[i]);
+  };
+  std::vector<std::pair<double, int>> found;
+  for (std::size_t k = 0; k + 1 < switching.size(); ++k)
+    for (int i = 0; i < 6 && branch[k] != branch[k + 1]; ++i) {
+      const double a = switching[k][i], b = switching[k + 1][i];
+      if ((a < 0.0) == (b < 0.0)) continue;
+      const auto fn = [&phi, i](double t) { return phi(t, i); };
+      found.push_back({switchTime(fn, valueOf(ts(k)), a, valueOf(ts(k + 1)), b), i});
+    }
+  std::sort(found.begin(), found.end());
+  DsPieces pieces;
+  const double h = 1e-7 * valueOf(c.out.motion.T_DS);
+  for (const auto& [t, i] : found) {
+    pieces.switch_times.push_back(t);
+    pieces.switch_function.push_back(i);
+    const double rate = (phi(t + h, i) - phi(t - h, i)) / (2.0 * h);
+    pieces.switch_rate.push_back(std::isfinite(rate) ? rate : 0.0);
+  }
+  const double T = valueOf(c.out.motion.T_DS);
+  for (std::size_t i = 0; i <= found.size(); ++i) {
+    const double a = i == 0 ? 0.0 : found[i - 1].first;
+    const double b = i == found.size() ? T : found[i].first;
+    pieces.branches.push_back(dsSample(c.model, c.options, c.out.motion, S(0.5 * (a + b))).branch);
+  }
+  return pieces;
+}
+
+// A switch time with its parameter derivative from φ(t_s(p), p) = 0 (implicit function
+// theorem, as (3.146)): one Newton step from the located root, on the AD scalar.
+template <class S> S switchTimeWithDerivative(EvalContext<S>& c, const DsPieces& pieces, int j) {
+  const double t = pieces.switch_times[j];
+  if (pieces.switch_rate[j] == 0.0) return S(t);  // no usable rate: the switch stays put
+  const S phi = dsSample(c.model, c.options, c.out.motion, S(t), pieces.branches[j])
+                    .switching[pieces.switch_function[j]];
+  return S(t) - phi / pieces.switch_rate[j];
+}
+
+template <class S>
+std::array<S, 4> integrateDsPiecewise(EvalContext<S>& c, const DsPieces& pieces) {
+  const GaitMotion<S>& mo = c.out.motion;
+  const std::vector<double>& sw = pieces.switch_times;
+  std::array<S, 4> total{S(0.0), S(0.0), S(0.0), S(0.0)};
+  std::array<Eigen::Matrix<S, Eigen::Dynamic, 1>, 4> f;
+  for (auto& v : f) v.resize(c.piece_grid.size());
+  std::vector<S> ends;
+  for (std::size_t j = 0; j < sw.size(); ++j)
+    ends.push_back(switchTimeWithDerivative(c, pieces, static_cast<int>(j)));
+  for (std::size_t piece = 0; piece <= sw.size(); ++piece) {
+    const S a = piece == 0 ? S(0.0) : ends[piece - 1];
+    const S b = piece == sw.size() ? mo.T_DS : ends[piece];
+    const auto ts = mappedNodes(c.piece_grid, a, b);
+    for (int k = 0; k < c.piece_grid.size(); ++k) {
+      const PhaseSample<S> s = dsSample(c.model, c.options, mo, S(ts(k)), pieces.branches[piece]);
+      const std::array<S, 4> in = criteriaIntegrands(c.model, s);
+      for (int i = 0; i < 4; ++i) f[i](k) = in[i];
+    }
+    const std::array<S, 4> part = integrateEach(c.piece_grid, f, a, b);
+    for (int i = 0; i < 4; ++i) total[i] += part[i];
+  }
+  return total;
+}
+
+template <class S>
+void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
+  GaitMotion<S>& mo = c.out.motion;
+  const GaitOptions& o = c.options;
+  const ConstraintState st = c.stateAbove(4);
+  const int nss = c.ss_grid.size(), nds = c.ds_grid.size();
+  std::array<Eigen::Matrix<S, Eigen::Dynamic, 1>, 4> ss_int, ds_int;
+  for (auto& v : ss_int) v.resize(nss);
+  for (auto& v : ds_int) v.resize(nds);
+  for (int k = 0; k < nss; ++k) {
+    const S& ad = mo.ss_alphadot(k);
+    const PhaseSample<S> s = ssSample(c.model, pts[k], ad, mo.ss_alphaddot(k));
+    setPhaseConstraints(c, kTorqueSS, kJointLimitsSS, k, s, st);
+    setContactConstraints(c, kFrictionConeSS, kNormalForceSS, 0, 1, k, s.R1, st);
+    if (k > 0 && k < nss - 1) {  // (3.49) on the open interval (gap #16)
+      const S x = s.foot2(0) / mo.d;
+      c.set(kClearance, k - 1, -(s.foot2(1) - o.clearance_height * (1.0 - x * x)), st);
+    }
+    const std::array<S, 4> in = criteriaIntegrands(c.model, s);
+    for (int i = 0; i < 4; ++i) ss_int[i](k) = in[i] / ad;  // dt = dα / α̇ (3.29)
+  }
+  const auto ts = mappedNodes(c.ds_grid, S(0.0), mo.T_DS);
+  std::vector<std::array<double, 6>> switching(nds);
+  std::vector<int> branch(nds);
+  for (int k = 0; k < nds; ++k) {
+    const PhaseSample<S> s = dsSample(c.model, o, mo, S(ts(k)));
+    for (int i = 0; i < 6; ++i) switching[k][i] = valueOf(s.switching[i]);
+    branch[k] = s.branch;
+    setPhaseConstraints(c, kTorqueDS, kJointLimitsDS, k, s, st);
+    setContactConstraints(c, kFrictionConeDS, kNormalForceDS, 0, 2, k, s.R1, st);
+    setContactConstraints(c, kFrictionConeDS, kNormalForceDS, 1, 2, k, s.R2, st);
+    c.set(kDsMonotone, k, s.qd(0) - o.ds_alphadot_max, st);  // (3.43)
+    const std::array<S, 4> in = criteriaIntegrands(c.model, s);
+    for (int i = 0; i < 4; ++i) ds_int[i](k) = in[i];
+  }
+  c.out.ds_pieces = c.known_pieces ? *c.known_pieces : dsPieces(c, ts, branch, switching);
+  const std::array<S, 4> ds_total = c.out.ds_pieces.switch_times.empty()
+                                        ? integrateEach(c.ds_grid, ds_int, S(0.0), mo.T_DS)
+                                        : integrateDsPiecewise(c, c.out.ds_pieces);
+  std::array<S, 4> crit;
+  for (int i = 0; i < 4; ++i)
+    crit[i] = (integrateOverInterval(c.ss_grid, ss_int[i], mo.alpha_iSS, mo.alpha_fSS) +
+               ds_total[i]) /
+              mo.d;  // (3.28)
+  c.out.C_Gamma = crit[0];
+  c.out.C_E = crit[1];
+  c.out.W = crit[2];
+  c.out.C_frott = crit[3];
+  c.out.motion_computed = true;
+}
+
+template <class S> bool allFinite(const GaitEvaluation<S>& out) {
+  for (std::size_t k = 0; k < out.g.size(); ++k)
+    if (out.state[k] != ConstraintState::NotComputed && !std::isfinite(valueOf(out.g[k])))
+      return false;
+  for (const S* x : {&out.C_Gamma, &out.C_E, &out.W, &out.C_frott, &out.T_SS, &out.speed})
+    if (!std::isfinite(valueOf(*x))) return false;
+  return true;
+}
+
+// A motion whose numbers overflow (a degenerate phase, e.g. a DS with almost no α range) is
+// reported as undefined at level 4, the level of the DS existence, never as NaN.
+template <class S> void discardNonFiniteMotion(EvalContext<S>& c) {
+  GaitEvaluation<S>& out = c.out;
+  for (std::size_t k = 0; k < out.g.size(); ++k)
+    if (c.layout.levelOf(static_cast<int>(k)) >= 4 || !std::isfinite(valueOf(out.g[k]))) {
+      out.g[k] = S(0.0);
+      out.state[k] = ConstraintState::NotComputed;
+    }
+  out.C_Gamma = out.C_E = out.W = out.C_frott = S(0.0);
+  if (!std::isfinite(valueOf(out.T_SS)) || !std::isfinite(valueOf(out.speed)))
+    out.T_SS = out.speed = out.alphadot_fSS = S(0.0);
+  out.motion_computed = false;
+  out.numerically_undefined = true;
+  out.failed_level = 4;
+}
+
+template <class S>
+void evaluateGaitImpl(const Model& model, const GaitOptions& options,
+                      const ConstraintLayout& layout, const GaitGrids& grids,
+                      const GaitVector<S>& p, GaitEvaluation<S>& out,
+                      const DsPieces* known_pieces = nullptr) {
+  out = GaitEvaluation<S>();
+  out.g.assign(layout.size(), S(0.0));
+  out.state.assign(layout.size(), ConstraintState::NotComputed);
+  EvalContext<S> c{model,   options, layout, grids.ss, grids.ds, grids.ds_piece,
+                   p,       out,     known_pieces};
+  const bool boundary_ok = boundaryStage(c);
+  out.step_length = p(kStepLength);
+  out.T_DS = p(kTDS);
+  if (boundary_ok) {
+    Vector5<S> qs_iSS, qs_fSS;
+    buildSsPaths(c, qs_iSS, qs_fSS);
+    std::vector<SsPathPoint<S>> pts;
+    zeroDynamicsStage(c, pts);
+    dsBoundaryStage(c, qs_iSS, qs_fSS);
+    out.T_SS = out.motion.T_SS;
+    out.alphadot_fSS = out.motion.alphadot_fSS;
+    out.speed = out.step_length / (out.T_SS + out.T_DS);  // (3.50)
+    if (dsReachStage(c)) motionStage(c, pts);
+  }
+  out.failed_level = c.lowestViolated(5);
+  if (!allFinite(out)) discardNonFiniteMotion(c);
+}
+
+}  // namespace gaitopt::detail

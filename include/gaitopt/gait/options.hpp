@@ -1,0 +1,39 @@
+#pragma once
+#include "gaitopt/gait/parameters.hpp"
+// Options of a gait evaluation: the choices the thesis leaves open (digest §6), each with a
+// documented default.
+namespace gaitopt {
+
+enum class DsDistribution {
+  Torque,  // pointwise min Γ*ᵀΓ* (3.60), (3.68)–(3.70)
+  Energy,  // pointwise min electrical power (3.61), (3.71)–(3.75)
+};
+
+struct GaitOptions {
+  Parameterisation parameterisation;  // thesis: 17 parameters
+  double friction_coefficient = 0.8;  // ground f (gap #1: Ch. 2 calls 1 a rarely exceeded value)
+  double clearance_height = 0.03;     // z_max of the clearance parabola (3.49) [m] (gap #2)
+  double min_normal_force = 20.0;     // R_iz ≥ 20 N, Fig. 3.11 caption (gap #3)
+  bool dry_friction = false;          // include Coulomb friction (smooth sign) in Γ*
+  DsDistribution ds_distribution = DsDistribution::Torque;
+  double sample_rate = 1000.0;        // trajectory.csv rate [Hz]
+  // Semi-infinite constraints and quadratures use Chebyshev–Lobatto grids of n+1 points
+  // (spectral accuracy on the smooth phase integrands).
+  int ss_nodes = 32;
+  int ds_nodes = 16;
+  // Margins that turn the thesis' strict inequalities into ≤ (gap #4).
+  double f_min = 1.0;                 // f(α) ≥ f_min [kg·m²], also the saturation (3.54)
+  double alphadot_margin = 0.05;      // ε of (3.56) [rad/s]
+  double ds_alphadot_max = -0.01;     // DS monotonicity α̇ ≤ this (3.43) [rad/s]
+  double angle_margin = 1e-3;         // α orderings (3.38), (3.40) [rad]
+  // Minimum DS range α_iDS − α_fDS [rad] of (3.38): the DS polynomials δ(α) are fitted over
+  // this range, and a vanishing one makes their slopes (and the torques) overflow.
+  double ds_alpha_range_min = 0.02;
+  double reach_margin = 1e-4;         // hip–foot distance² away from 0 and (l4+l5)² [m²]
+  double kappa_min = 0.1;             // leg-exchange factor κ (gap #9)
+  double joint_limit_margin = 0.0;    // on (3.39), (3.42) [rad]
+  bool full_torque_envelope = true;   // (3.47) with its sloped parts, not only the 140 N·m plateau
+  double target_speed = 0.0;          // > 0: report the speed constraint (3.50) [m/s]
+};
+
+}  // namespace gaitopt

@@ -1,0 +1,37 @@
+#pragma once
+// One step evaluation shared by every cost term and constraint set of an optimisation problem
+// at the current point (the solver asks for f, ∇f, g and ∂g separately at the same x).
+#include <optional>
+
+#include "gaitopt/gait/evaluator.hpp"
+
+namespace gaitopt {
+
+enum class GradientMode {
+  Exact,            // forward-mode AD through the evaluation
+  FiniteDifference  // central differences of the values, for comparison (§3.6.4)
+};
+
+class GaitEvaluationCache {
+ public:
+  explicit GaitEvaluationCache(const GaitEvaluator& evaluator,
+                               GradientMode mode = GradientMode::Exact)
+      : evaluator_(evaluator), mode_(mode) {}
+  const GaitEvaluator& evaluator() const { return evaluator_; }
+  const GaitEvaluation<double>& values(const GaitParameters& p);
+  const GaitGradient& gradient(const GaitParameters& p);
+  int valueEvaluations() const { return value_count_; }
+  int gradientEvaluations() const { return gradient_count_; }
+
+ private:
+  GaitGradient finiteDifferenceGradient(const GaitParameters& p);
+
+  const GaitEvaluator& evaluator_;
+  GradientMode mode_;
+  std::optional<GaitParameters> value_at_, gradient_at_;
+  GaitEvaluation<double> values_;
+  GaitGradient gradient_;
+  int value_count_ = 0, gradient_count_ = 0;
+};
+
+}  // namespace gaitopt

@@ -1,0 +1,43 @@
+#pragma once
+// Solver back-ends for an NlpProblem: Ipopt (interior point, limited-memory quasi-Newton
+// Hessian) and NLopt (SLSQP with gradients, COBYLA derivative-free). The adapters only
+// translate; the problem's pieces hold all the physics.
+#include <ostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gaitopt/opt/nlp_problem.hpp"
+
+namespace gaitopt {
+
+enum class NlpStatus { Solved, Infeasible, MaxIterations, Failed };
+
+const char* nlpStatusName(NlpStatus s);
+
+struct NlpSettings {
+  int max_iter = 500;
+  double tol = 1e-6;                 // optimality tolerance
+  double constraint_tol = 1e-7;      // feasibility tolerance on the scaled constraints
+  std::vector<std::pair<std::string, std::string>> ipopt_options;  // passed through
+  std::string label;                 // hierarchy stage, for the progress lines
+  int print_every = 1;               // progress line every k iterations (0: silent)
+  std::ostream* log = nullptr;
+};
+
+struct NlpSolution {
+  VectorX x;
+  NlpStatus status = NlpStatus::Failed;
+  int iterations = 0;
+  double objective = 0.0;
+  std::string message;
+};
+
+NlpSolution solveWithIpopt(NlpProblem& problem, const NlpSettings& settings);
+// The first option key Ipopt rejects (unknown key or bad value), or "" if all are accepted.
+std::string rejectedIpoptOption(const std::vector<std::pair<std::string, std::string>>& options);
+
+enum class NloptMethod { Slsqp, Cobyla };
+NlpSolution solveWithNlopt(NlpProblem& problem, const NlpSettings& settings, NloptMethod method);
+
+}  // namespace gaitopt

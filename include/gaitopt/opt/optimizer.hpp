@@ -1,0 +1,68 @@
+#pragma once
+// Optimal walking steps under the constraint hierarchy (§3.4). Default strategy "staged"
+// (the fsqp-like scheme (3.76) the thesis recommends): first project the start onto levels 0–1,
+// then onto levels 0–4 (nearest point in the scaled parameter norm, (3.78)), then solve the full
+// problem; an iterate whose step cannot be computed is refused to the solver, which shortens
+// its step. "direct" skips the two projections.
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "gaitopt/opt/evaluation_cache.hpp"
+#include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/opt/gait_problem.hpp"
+#include "gaitopt/opt/nlp_solver.hpp"
+
+namespace gaitopt {
+
+enum class HierarchyStrategy { Staged, Direct };
+enum class Backend { Ipopt, NloptSlsqp, NloptCobyla };
+
+struct SolverSettings {
+  Backend backend = Backend::NloptSlsqp;  // measured faster than Ipopt here (README)
+  HierarchyStrategy hierarchy = HierarchyStrategy::Staged;
+  int max_iter = 500;
+  double tol = 1e-8;
+  std::vector<std::pair<std::string, std::string>> ipopt_options;
+  int print_every = 1;
+  // Exchange method for the grid constraints (only near-active entries in each NLP, re-checked
+  // on the full grid after each solve); false: every grid entry in one NLP.
+  bool constraint_exchange = false;  // measured: SLSQP stalls with it, Ipopt gains (README)
+  GradientMode gradients = GradientMode::Exact;
+  int max_restarts = 3;  // of the full stage, from the last point, when it ends unmet
+};
+
+struct OptimizationRequest {
+  Criterion criterion = Criterion::Torque;
+  std::optional<double> speed;  // m/s; free speed when empty
+  GaitParameters initial;
+  SolverSettings solver;
+};
+
+struct StageReport {
+  std::string name;
+  NlpStatus status;
+  int iterations;
+};
+
+struct OptimizationResult {
+  GaitParameters parameters;
+  GaitEvaluation<double> evaluation;
+  std::string status;  // "optimal", "infeasible", "max_iter", "failed"
+  int iterations = 0;
+  int function_evaluations = 0, gradient_evaluations = 0;
+  double wall_time_s = 0.0;
+  double constraint_violation = 0.0;  // max over all levels and the speed, unscaled
+  int unmet_level = -1;               // lowest level with an unmet constraint
+  std::vector<std::string> unmet_constraints;
+  std::vector<StageReport> stages;
+};
+
+const char* backendName(Backend b);
+const char* strategyName(HierarchyStrategy s);
+
+OptimizationResult optimizeGait(const GaitEvaluator& evaluator, const OptimizationRequest& request,
+                                std::ostream* log = nullptr);
+
+}  // namespace gaitopt

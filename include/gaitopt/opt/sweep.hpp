@@ -1,0 +1,107 @@
+#pragma once
+// Speed sweeps by continuation (§3.6 of the thesis: the first optimum of a sweep comes from a
+// free-speed optimisation, every other speed is warm-started from the optimum at a nearby
+// speed), the speed-range syntax of `gaitopt sweep --speeds`, the split of a speed list into
+// contiguous chunks (--jobs, --shard) and sweep.csv (writing and merging shards).
+//
+// A chain over a sorted list of speeds: (a) the free-speed optimum (computed once per call),
+// (b) the listed speed closest to its speed, started from it, (c) outward in both directions,
+// each speed started from the last optimal speed on its side (the free-speed optimum while there
+// is none), (d) afterwards each speed that is not optimal is retried once from the nearest
+// optimum beyond it (further from the chain's start), when there is one, and then once from
+// defaultInitialGuess. With jobs > 1 the list is cut into `jobs` contiguous chunks, each an
+// independent chain (started at its speed closest to the free-speed optimum) on its own thread;
+// each chunk's results are exactly those of a one-chain run on that chunk alone (e.g. a shard).
+#include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "gaitopt/opt/optimizer.hpp"
+
+namespace gaitopt {
+
+// "start:stop:step" [m/s], stop included when reached within a rounding tolerance (1e-9 step);
+// values are rounded to 1e-12 m/s so 0.2 + 0.1 gives 0.3. Throws std::invalid_argument when the
+// text is not three finite numbers, start ≤ 0, stop < start, step ≤ 0 or more than 10000 speeds.
+std::vector<double> parseSpeedRange(const std::string& text);
+
+// Shard "i/n", i 0-based (0 ≤ i < n); throws std::invalid_argument otherwise.
+struct Shard {
+  int index = 0;
+  int count = 1;
+};
+Shard parseShard(const std::string& text);
+
+// `count` contiguous chunks of `sorted`, sizes differing by at most one (the later chunks take
+// the extra elements); throws std::invalid_argument if count < 1 or count > sorted.size().
+std::vector<std::vector<double>> splitContiguous(const std::vector<double>& sorted, int count);
+
+// The sorted speeds with the checks of sweepSpeeds (non-empty, finite, > 0, no duplicates);
+// throws std::invalid_argument.
+std::vector<double> sortedSpeeds(const std::vector<double>& speeds);
+
+struct SweepPoint {
+  double speed = 0.0;         // the requested speed [m/s]
+  OptimizationResult result;  // the attempt kept: the first optimal one, else the least violating
+  bool warm_started = false;  // that attempt started from another listed speed's optimum
+  double from_speed = 0.0;    // speed of the optimum it started from: a listed speed, the free
+                              // speed (chain start), NaN when it started from defaultInitialGuess
+  int attempts = 0;           // optimisations run for this speed (1–3)
+  int total_iterations = 0;   // over all attempts
+  double total_wall_time_s = 0.0;
+};
+
+struct SweepSettings {
+  int jobs = 1;          // independent chains (threads); clamped to the number of speeds
+  bool sharded = false;  // keep only chunk shard.index of shard.count (one chain per job)
+  Shard shard;
+  std::ostream* warnings = nullptr;  // e.g. "ipopt: chains run one after the other"
+};
+
+// One progress report: the free-speed start (free_speed true, point.speed = the speed reached,
+// done = 0) or a listed speed whose result is final (done = how many are final so far).
+// Calls are serialised (never concurrent), but with jobs > 1 they come from worker threads.
+struct SweepProgress {
+  bool free_speed = false;
+  const SweepPoint& point;
+  int done = 0;
+  int total = 0;
+  double elapsed_s = 0.0;  // since sweepSpeeds started
+};
+using ProgressFn = std::function<void(const SweepProgress&)>;
+
+// The speeds of the run (the shard's chunk when sharded), sorted; throws std::invalid_argument
+// for a bad list or shard.
+std::vector<double> sweepRunSpeeds(const std::vector<double>& speeds,
+                                   const SweepSettings& settings);
+
+// Results in increasing speed order, one per speed of sweepRunSpeeds. `base` gives the
+// criterion, the solver settings and the initial guess of the free-speed optimisation; its
+// `speed` is ignored. Deterministic for given speeds, settings.jobs and shard. If the backend
+// is Ipopt, chains run one after the other even with jobs > 1 (a warning is written), since
+// Ipopt with the sequential MUMPS solver is not known to be thread-safe.
+std::vector<SweepPoint> sweepSpeeds(const GaitEvaluator& evaluator, const OptimizationRequest& base,
+                                    const std::vector<double>& speeds,
+                                    const SweepSettings& settings, const ProgressFn& progress = {});
+
+// sweep.csv
+extern const char* const kSweepCsvHeader;  // speed,status,C_Gamma,...,wall_time_s (no newline)
+// One row (no newline): full precision, empty fields where undefined; iterations and wall time
+// are totals over the speed's attempts.
+std::string sweepCsvRow(const GaitEvaluator& evaluator, const SweepPoint& point);
+std::string sweepCsv(const GaitEvaluator& evaluator, const std::vector<SweepPoint>& points);
+
+// Concatenation of several sweep.csv texts (`names` label them in messages), rows sorted by
+// speed. Throws std::invalid_argument if a header differs from kSweepCsvHeader, a row is
+// malformed or a speed appears twice (within 1e-9 m/s).
+std::string mergeSweepCsvs(const std::vector<std::string>& texts,
+                           const std::vector<std::string>& names);
+
+// Sub-folder of one speed: "v" + fixed-point speed with `decimals` digits ("v0.500");
+// sweepFolderDecimals gives the fewest decimals ≥ 3 (at most 12) that keep the list's names
+// distinct.
+std::string sweepFolderName(double speed, int decimals);
+int sweepFolderDecimals(const std::vector<double>& speeds);
+
+}  // namespace gaitopt

@@ -1,0 +1,50 @@
+#include "gaitopt/gait/constraints.hpp"
+
+namespace gaitopt {
+
+ConstraintLayout::ConstraintLayout(const GaitOptions& o) {
+  const int ss = o.ss_nodes + 1, ds = o.ds_nodes + 1;
+  struct Spec {
+    const char* name;
+    int level;
+    const char* equation;
+    int count;
+  };
+  const Spec specs[kNumConstraintGroups] = {
+      {"reach_max_iDS", 0, "(3.36)", 1},
+      {"reach_min_iDS", 0, "(3.36)", 1},
+      {"reach_max_fDS", 0, "(3.36)", 1},
+      {"reach_min_fDS", 0, "(3.36)", 1},
+      {"reach_max_int", 0, "(3.37)", 1},
+      {"reach_min_int", 0, "(3.37)", 1},
+      {"alpha_order_DS", 1, "(3.38)", 1},
+      {"alpha_order_fDS_fSS", 1, "(3.38)", 1},
+      {"tibia_front", 1, "(3.40)", 1},
+      {"tibia_rear", 1, "(3.40)", 1},
+      {"f_positive", 2, "(3.45)", ss},
+      {"alphadot_iSS_negative", 3, "(3.15)", 1},
+      {"no_fall_back", 3, "(3.44), (3.55)", ss},
+      {"kappa_positive", 4, "(3.23)", 1},
+      {"ds_reach_max", 4, "(3.41)", ds},
+      {"ds_reach_min", 4, "(3.41)", ds},
+      {"torque_envelope_ss", 5, "(3.46), (3.47)", 8 * ss},
+      {"joint_limits_ss", 5, "(3.42)", 8 * ss},
+      {"friction_cone_ss", 5, "(3.48)", 2 * ss},
+      {"normal_force_ss", 5, "(3.48)", ss},
+      {"clearance", 5, "(3.49)", ss - 2},
+      {"torque_envelope_ds", 5, "(3.46), (3.47)", 8 * ds},
+      {"joint_limits_ds", 5, "(3.42)", 8 * ds},
+      {"friction_cone_ds", 5, "(3.48)", 4 * ds},
+      {"normal_force_ds", 5, "(3.48)", 2 * ds},
+      {"ds_monotone", 5, "(3.43)", ds},
+  };
+  for (const Spec& s : specs) {
+    groups_.push_back({s.name, s.level, s.equation, size_, s.count});
+    size_ += s.count;
+    entry_level_.insert(entry_level_.end(), s.count, s.level);
+  }
+}
+
+int ConstraintLayout::levelOf(int entry) const { return entry_level_[entry]; }
+
+}  // namespace gaitopt

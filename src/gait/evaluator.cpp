@@ -1,0 +1,85 @@
+#include "gaitopt/gait/evaluator.hpp"
+
+#include <stdexcept>
+#include <unsupported/Eigen/AutoDiff>
+
+#include "gaitopt/gait/evaluator_impl.hpp"
+
+namespace gaitopt {
+namespace {
+
+// Fixed-size derivative vectors: Eigen's AutoDiffScalar gives a dynamic-size constant an empty
+// derivative, which its compound assignments do not reconcile. The thesis' 17 parameters get
+// exactly 17 directions; richer parameterisations the next bucket (unused directions stay 0).
+template <int N> using GaitAD = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
+
+Model gaitModel(const RobotParams& robot, const GaitOptions& options, const ModelOptions& mo) {
+  Model m = buildModel(robot, mo);
+  if (!options.dry_friction) m.coulomb.setZero();  // viscous-only results of §3.6
+  return m;
+}
+
+template <class AD> GaitParameters gradientOf(const AD& x, int n) {
+  return x.derivatives().head(n);
+}
+
+}  // namespace
+
+GaitEvaluator::GaitEvaluator(const RobotParams& robot, const GaitOptions& options,
+                             const ModelOptions& model_options)
+    : model_(gaitModel(robot, options, model_options)),
+      options_(options),
+      layout_(options),
+      grids_(options) {
+  if (options.parameterisation.ss_points < 1 || options.parameterisation.ss_points % 2 == 0 ||
+      options.parameterisation.ds_points < 0 ||
+      options.parameterisation.size() > kMaxGaitParameters)
+    throw std::invalid_argument("unsupported parameterisation " +
+                                options.parameterisation.label());
+}
+
+void GaitEvaluator::checkSize(const GaitParameters& p) const {
+  if (p.size() != numParameters())
+    throw std::invalid_argument("gait parameters: expected " + std::to_string(numParameters()) +
+                                " values for " + options_.parameterisation.label() + ", got " +
+                                std::to_string(p.size()));
+}
+
+GaitEvaluation<double> GaitEvaluator::evaluate(const GaitParameters& p) const {
+  checkSize(p);
+  GaitEvaluation<double> out;
+  detail::evaluateGaitImpl(model_, options_, layout_, grids_, p, out);
+  return out;
+}
+
+template <class AD> GaitGradient GaitEvaluator::gradientWith(const GaitParameters& p) const {
+  const int n = numParameters();
+  GaitGradient r;
+  // The double pass gives the values and the DS pieces the AD pass integrates over.
+  r.value = evaluate(p);
+  constexpr int directions = AD::DerType::RowsAtCompileTime;
+  GaitVector<AD> pad(n);
+  for (int i = 0; i < n; ++i) pad(i) = AD(p(i), directions, i);
+  GaitEvaluation<AD> ad;
+  detail::evaluateGaitImpl(model_, options_, layout_, grids_, pad, ad, &r.value.ds_pieces);
+  r.dg.resize(layout_.size(), n);
+  for (int k = 0; k < layout_.size(); ++k) r.dg.row(k) = gradientOf(ad.g[k], n).transpose();
+  r.dC_Gamma = gradientOf(ad.C_Gamma, n);
+  r.dC_E = gradientOf(ad.C_E, n);
+  r.dW = gradientOf(ad.W, n);
+  r.dC_frott = gradientOf(ad.C_frott, n);
+  r.dT_SS = gradientOf(ad.T_SS, n);
+  r.dT_DS = gradientOf(ad.T_DS, n);
+  r.dspeed = gradientOf(ad.speed, n);
+  return r;
+}
+
+GaitGradient GaitEvaluator::evaluateWithGradient(const GaitParameters& p) const {
+  checkSize(p);
+  const int n = numParameters();
+  if (n == kNumGaitParameters) return gradientWith<GaitAD<kNumGaitParameters>>(p);
+  if (n <= 32) return gradientWith<GaitAD<32>>(p);
+  return gradientWith<GaitAD<kMaxGaitParameters>>(p);
+}
+
+}  // namespace gaitopt

@@ -1,0 +1,199 @@
+#include "gaitopt/gait/summary.hpp"
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace gaitopt {
+
+namespace {
+
+// Unit of the g values of each constraint group (g ≤ 0 when satisfied).
+const char* groupUnit(int id) {
+  switch (id) {
+    case kReachMaxIDS: case kReachMinIDS: case kReachMaxFDS: case kReachMinFDS:
+    case kReachMaxInt: case kReachMinInt: case kDsReachMax: case kDsReachMin:
+      return "m^2";
+    case kAlphaOrderDS: case kAlphaOrderSS: case kTibiaFront: case kTibiaRear:
+    case kJointLimitsSS: case kJointLimitsDS:
+      return "rad";
+    case kFPositive: return "kg m^2";
+    case kAlphadotNegative: case kDsMonotone: return "rad/s";
+    case kNoFallBack: return "(rad/s)^2";
+    case kKappaPositive: return "1";
+    case kTorqueSS: case kTorqueDS: return "N m";
+    case kFrictionConeSS: case kFrictionConeDS: case kNormalForceSS: case kNormalForceDS:
+      return "N";
+    case kClearance: return "m";
+    default: return "";
+  }
+}
+
+void numberOrNull(JsonWriter& w, bool available, double v) {
+  if (available && std::isfinite(v)) {
+    w.value(v);
+  } else {
+    w.null();
+  }
+}
+
+}  // namespace
+
+ConstraintGroupSummary summarizeConstraintGroup(const ConstraintGroup& group,
+                                                const GaitEvaluation<double>& e) {
+  ConstraintGroupSummary s;
+  double worst = -std::numeric_limits<double>::infinity();
+  bool nan = false;  // a Defined NaN would be an evaluator bug: report the group as null
+  for (int k = group.offset; k < group.offset + group.count; ++k) {
+    if (e.state[k] != ConstraintState::Defined) continue;
+    const double g = e.g[k];
+    ++s.defined;
+    nan = nan || std::isnan(g);
+    if (g > worst) worst = g;
+    if (g > 0.0) ++s.violated;
+  }
+  s.value = s.defined > 0 && !nan ? worst : std::numeric_limits<double>::quiet_NaN();
+  return s;
+}
+
+double maxDefinedViolation(const GaitEvaluation<double>& e) {
+  double worst = 0.0;
+  for (std::size_t k = 0; k < e.g.size(); ++k) {
+    if (e.state[k] == ConstraintState::Defined && e.g[k] > worst) worst = e.g[k];
+  }
+  return worst;
+}
+
+bool zeroDynamicsComputed(const GaitEvaluator& ev, const GaitEvaluation<double>& e) {
+  const ConstraintGroup& f = ev.layout()[kFPositive];
+  return f.count > 0 && e.state[f.offset] != ConstraintState::NotComputed;
+}
+
+void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitParameters& p,
+                             const GaitEvaluation<double>& e) {
+  const bool defined = e.defined();
+  const bool criteria = e.motion_computed && defined;
+  const bool timing = zeroDynamicsComputed(ev, e);
+  const GaitOptions& o = ev.options();
+
+  w.key("status").value(defined ? "ok" : "undefined");
+  w.key("failed_level");
+  if (e.failed_level < 0) {
+    w.null();
+  } else {
+    w.value(e.failed_level);
+  }
+  w.key("motion_computed").value(e.motion_computed);
+  w.key("numerically_undefined").value(e.numerically_undefined);
+  w.key("robot").value(ev.model().robot.name);
+
+  w.key("criteria");
+  if (criteria) {
+    w.beginObject();
+    w.key("C_Gamma").value(e.C_Gamma);
+    w.key("C_E").value(e.C_E);
+    w.key("W").value(e.W);
+    w.key("C_frott").value(e.C_frott);
+    w.endObject();
+  } else {
+    w.null();
+  }
+  w.key("speed");
+  numberOrNull(w, timing, e.speed);
+  w.key("step_length").value(e.step_length);
+  w.key("T_SS");
+  numberOrNull(w, timing, e.T_SS);
+  w.key("T_DS").value(e.T_DS);
+  w.key("alphadot_fSS");
+  numberOrNull(w, timing, e.alphadot_fSS);
+  w.key("target_speed");
+  numberOrNull(w, o.target_speed > 0.0, o.target_speed);
+  w.key("speed_error");  // (3.50) as a residual: speed − target_speed
+  numberOrNull(w, timing && o.target_speed > 0.0, e.speed - o.target_speed);
+
+  w.key("parameters").beginObject();
+  const std::vector<std::string> names = ev.options().parameterisation.names();
+  for (int i = 0; i < static_cast<int>(names.size()); ++i) w.key(names[i]).value(p(i));
+  w.endObject();
+
+  w.key("constraints").beginArray();
+  for (int id = 0; id < static_cast<int>(ev.layout().groups().size()); ++id) {
+    const ConstraintGroup& g = ev.layout()[id];
+    const ConstraintGroupSummary s = summarizeConstraintGroup(g, e);
+    const bool has_value = s.defined > 0 && std::isfinite(s.value);
+    w.beginObject();
+    w.key("name").value(g.name);
+    w.key("level").value(g.level);
+    w.key("equation").value(g.equation);
+    w.key("unit").value(groupUnit(id));
+    w.key("value");
+    numberOrNull(w, has_value, s.value);
+    w.key("satisfied");
+    if (has_value) {
+      w.value(s.value <= 0.0);
+    } else {
+      w.null();
+    }
+    w.key("count").value(g.count);
+    w.key("defined").value(s.defined);
+    w.key("violated").value(s.violated);
+    w.endObject();
+  }
+  w.endArray();
+  w.key("max_violation").value(maxDefinedViolation(e));
+
+  w.key("ds_switch_times").beginArray();
+  if (criteria) {
+    for (double t : e.ds_pieces.switch_times) w.value(t);
+  }
+  w.endArray();
+
+  w.key("options").beginObject();
+  w.key("friction_coefficient").value(o.friction_coefficient);
+  w.key("clearance_height").value(o.clearance_height);
+  w.key("min_normal_force").value(o.min_normal_force);
+  w.key("dry_friction").value(o.dry_friction);
+  w.key("ds_distribution").value(o.ds_distribution == DsDistribution::Torque ? "torque" : "energy");
+  w.key("sample_rate").value(o.sample_rate);
+  w.key("ss_nodes").value(o.ss_nodes);
+  w.key("ds_nodes").value(o.ds_nodes);
+  w.key("f_min").value(o.f_min);
+  w.key("alphadot_margin").value(o.alphadot_margin);
+  w.key("ds_alphadot_max").value(o.ds_alphadot_max);
+  w.key("angle_margin").value(o.angle_margin);
+  w.key("reach_margin").value(o.reach_margin);
+  w.key("kappa_min").value(o.kappa_min);
+  w.key("joint_limit_margin").value(o.joint_limit_margin);
+  w.key("full_torque_envelope").value(o.full_torque_envelope);
+  w.key("target_speed").value(o.target_speed);
+  const ModelOptions& mo = ev.model().options;
+  w.key("rotor").value(mo.rotor == RotorModel::Exact ? "exact" : "high_gear");
+  w.key("friction_smoothing").value(mo.friction_smoothing);
+  w.endObject();
+
+  static constexpr std::pair<const char*, const char*> kUnits[] = {
+      {"C_Gamma", "N^2 m s (integral of Gamma*^T Gamma* dt per metre walked)"},
+      {"C_E", "J/m"}, {"W", "J/m"}, {"C_frott", "J/m"}, {"speed", "m/s"}, {"step_length", "m"},
+      {"T_SS", "s"}, {"T_DS", "s"}, {"alphadot_fSS", "rad/s"},
+      {"ds_switch_times", "s from the start of double support"},
+      {"parameters", "rad, m, s; delta*s_* are d(delta)/d(alpha), alphadot_iSS rad/s"},
+      {"constraints", "per group, see 'unit'; satisfied when value <= 0"},
+  };
+  w.key("units").beginObject();
+  for (const auto& [key, unit] : kUnits) w.key(key).value(unit);
+  w.endObject();
+}
+
+std::string gaitSummaryJson(const GaitEvaluator& ev, const GaitParameters& p,
+                            const GaitEvaluation<double>& e,
+                            const std::function<void(JsonWriter&)>& extra) {
+  JsonWriter w;
+  w.beginObject();
+  writeGaitSummaryMembers(w, ev, p, e);
+  if (extra) extra(w);
+  w.endObject();
+  return w.str() + "\n";
+}
+
+}  // namespace gaitopt

@@ -1,0 +1,234 @@
+#include "gaitopt/io/gait_file.hpp"
+
+#include <array>
+#include <cmath>
+#include <sstream>
+
+#include "gaitopt/io/json_writer.hpp"
+#include "gaitopt/io/robot_file.hpp"
+
+namespace gaitopt {
+
+namespace {
+
+// Chebyshev grids of more than 512 intervals cost far more than they gain (the phase
+// integrands are smooth) and would make the constraint vector huge.
+constexpr int kMaxNodes = 512;
+// A step lasts about a second; 100 kHz already gives ~10^5 rows per file.
+constexpr double kMaxSampleRate = 1e5;
+
+// Each reader returns `fallback` when the key is absent and range-checks a present value.
+double positiveOr(const YamlMap& m, const std::string& key, double fallback) {
+  const std::optional<double> v = m.optionalNumber(key);
+  if (!v) return fallback;
+  if (!(*v > 0.0)) throw m.error(key, "must be > 0, got " + showNumber(*v));
+  return *v;
+}
+
+double nonNegativeOr(const YamlMap& m, const std::string& key, double fallback) {
+  const std::optional<double> v = m.optionalNumber(key);
+  if (!v) return fallback;
+  if (*v < 0.0) throw m.error(key, "must be >= 0, got " + showNumber(*v));
+  return *v;
+}
+
+double negativeOr(const YamlMap& m, const std::string& key, double fallback) {
+  const std::optional<double> v = m.optionalNumber(key);
+  if (!v) return fallback;
+  if (!(*v < 0.0)) throw m.error(key, "must be < 0, got " + showNumber(*v));
+  return *v;
+}
+
+int nodesOr(const YamlMap& m, const std::string& key, int fallback) {
+  const std::optional<double> v = m.optionalNumber(key);
+  if (!v) return fallback;
+  if (std::floor(*v) != *v || *v < 2.0 || *v > kMaxNodes) {
+    throw m.error(key, "must be an integer from 2 to " + std::to_string(kMaxNodes) + ", got " +
+                           showNumber(*v));
+  }
+  return static_cast<int>(*v);
+}
+
+bool booleanOr(const YamlMap& m, const std::string& key, bool fallback) {
+  return m.has(key) ? m.boolean(key) : fallback;
+}
+
+// A string option restricted to `choices`; returns the index of the value, or -1 if absent.
+template <std::size_t N>
+int choiceOr(const YamlMap& m, const std::string& key, const std::array<const char*, N>& choices) {
+  return m.has(key) ? choiceIndex(m, key, choices) : -1;
+}
+
+const std::array<const char*, 2> kDsDistributions = {"torque", "energy"};
+const std::array<const char*, 2> kRotorModels = {"exact", "high_gear"};
+
+// Plain YAML scalar when it is obviously safe (a path of letters, digits, '_', '-', '.',
+// '/', not starting with '-'), else a double-quoted one.
+std::string yamlString(const std::string& s) {
+  bool plain = !s.empty() && s.front() != '-';
+  for (char c : s) {
+    plain = plain && ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') ||
+                      (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '.' || c == '/');
+  }
+  if (plain) return s;
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+Parameterisation parseParameterisation(const YamlMap& doc) {
+  Parameterisation par;
+  if (!doc.has("parameterisation")) return par;
+  if (!doc.hasMapping("parameterisation")) {
+    const std::string v = doc.string("parameterisation");
+    if (v != "miossec")
+      throw doc.error("parameterisation", "expected 'miossec' or a mapping {ss_points, "
+                                          "ds_points}, got '" + v + "'");
+    return par;
+  }
+  const YamlMap m = doc.map("parameterisation");
+  const auto count = [&m](const char* key, int fallback) {
+    const std::optional<double> v = m.optionalNumber(key);
+    if (!v) return fallback;
+    if (*v != std::floor(*v) || *v < 0 || *v > kMaxGaitParameters)
+      throw m.error(key, "must be a whole number from 0 to " + std::to_string(kMaxGaitParameters) +
+                             ", got " + showNumber(*v));
+    return static_cast<int>(*v);
+  };
+  par.ss_points = count("ss_points", 1);
+  par.ds_points = count("ds_points", 0);
+  m.rejectUnknownKeys();
+  if (par.ss_points % 2 == 0)
+    throw m.error("ss_points", "must be odd (the middle point is the thesis' alpha_int), got " +
+                                   std::to_string(par.ss_points));
+  if (par.size() > kMaxGaitParameters)
+    throw m.error("ss_points", "gives " + std::to_string(par.size()) + " parameters, more than " +
+                                   std::to_string(kMaxGaitParameters));
+  return par;
+}
+
+GaitParameters parseGaitParameters(const YamlMap& m, const Parameterisation& par) {
+  const std::vector<std::string> names = par.names();
+  GaitParameters p(par.size());
+  for (int i = 0; i < par.size(); ++i) p(i) = m.number(names[i]);
+  // Implicit requirements of the parametrisation (digest §3.5 [G]): a forward step and a
+  // double support of positive duration (the DS α(t) cubic is singular at T_DS = 0).
+  for (int i : {static_cast<int>(kStepLength), static_cast<int>(kTDS)}) {
+    if (!(p(i) > 0.0)) throw m.error(names[i], "must be > 0, got " + showNumber(p(i)));
+  }
+  m.rejectUnknownKeys();
+  return p;
+}
+
+GaitOptions parseGaitOptions(const YamlMap& m, ModelOptions& model_options) {
+  GaitOptions o;
+  o.friction_coefficient = positiveOr(m, "friction_coefficient", o.friction_coefficient);
+  o.clearance_height = nonNegativeOr(m, "clearance_height", o.clearance_height);
+  o.min_normal_force = nonNegativeOr(m, "min_normal_force", o.min_normal_force);
+  o.dry_friction = booleanOr(m, "dry_friction", o.dry_friction);
+  if (const int k = choiceOr(m, "ds_distribution", kDsDistributions); k >= 0) {
+    o.ds_distribution = k == 0 ? DsDistribution::Torque : DsDistribution::Energy;
+  }
+  o.sample_rate = positiveOr(m, "sample_rate", o.sample_rate);
+  if (o.sample_rate > kMaxSampleRate) {
+    throw m.error("sample_rate", "must be at most " + showNumber(kMaxSampleRate) + " Hz, got " +
+                                     showNumber(o.sample_rate));
+  }
+  o.ss_nodes = nodesOr(m, "ss_nodes", o.ss_nodes);
+  o.ds_nodes = nodesOr(m, "ds_nodes", o.ds_nodes);
+  o.f_min = positiveOr(m, "f_min", o.f_min);
+  o.alphadot_margin = nonNegativeOr(m, "alphadot_margin", o.alphadot_margin);
+  o.ds_alphadot_max = negativeOr(m, "ds_alphadot_max", o.ds_alphadot_max);
+  o.angle_margin = nonNegativeOr(m, "angle_margin", o.angle_margin);
+  o.ds_alpha_range_min = nonNegativeOr(m, "ds_alpha_range_min", o.ds_alpha_range_min);
+  o.reach_margin = nonNegativeOr(m, "reach_margin", o.reach_margin);
+  o.kappa_min = positiveOr(m, "kappa_min", o.kappa_min);
+  o.joint_limit_margin = nonNegativeOr(m, "joint_limit_margin", o.joint_limit_margin);
+  o.full_torque_envelope = booleanOr(m, "full_torque_envelope", o.full_torque_envelope);
+  o.target_speed = nonNegativeOr(m, "target_speed", o.target_speed);
+  if (const int k = choiceOr(m, "rotor", kRotorModels); k >= 0) {
+    model_options.rotor = k == 0 ? RotorModel::Exact : RotorModel::HighGear;
+  }
+  model_options.friction_smoothing =
+      positiveOr(m, "friction_smoothing", model_options.friction_smoothing);
+  m.rejectUnknownKeys();
+  return o;
+}
+
+GaitFile loadGaitFile(const std::string& path) {
+  GaitFile g;
+  g.path = path;
+  const YamlMap doc(loadYamlFile(path), path, "");
+  const std::string robot = doc.string("robot");
+  if (robot.empty()) throw doc.error("robot", "must name the robot description file");
+  g.robot_path = resolveAgainstFile(path, robot);  // against the gait file's directory
+  const Parameterisation par = parseParameterisation(doc);
+  g.parameters = parseGaitParameters(doc.map("parameters"), par);
+  if (const std::optional<YamlMap> options = doc.optionalMap("options")) {
+    g.options = parseGaitOptions(*options, g.model_options);
+  }
+  g.options.parameterisation = par;
+  doc.rejectUnknownKeys();
+
+  requireReadableFile(doc, "robot", "robot file", g.robot_path, robot, "gait file");
+  g.robot = loadRobot(g.robot_path);  // errors inside the robot file name that file
+  return g;
+}
+
+std::string gaitOptionsYaml(const GaitOptions& o, const ModelOptions& mo, int indent) {
+  const std::string pad(static_cast<std::size_t>(indent), ' ');
+  std::ostringstream out;
+  const auto num = [&](const char* key, double v) {
+    out << pad << key << ": " << formatDouble(v) << '\n';
+  };
+  const auto text = [&](const char* key, const std::string& v) {
+    out << pad << key << ": " << v << '\n';
+  };
+  const auto flag = [&](const char* key, bool v) { text(key, v ? "true" : "false"); };
+  num("friction_coefficient", o.friction_coefficient);
+  num("clearance_height", o.clearance_height);
+  num("min_normal_force", o.min_normal_force);
+  flag("dry_friction", o.dry_friction);
+  text("ds_distribution", kDsDistributions[o.ds_distribution == DsDistribution::Torque ? 0 : 1]);
+  num("sample_rate", o.sample_rate);
+  text("ss_nodes", std::to_string(o.ss_nodes));
+  text("ds_nodes", std::to_string(o.ds_nodes));
+  num("f_min", o.f_min);
+  num("alphadot_margin", o.alphadot_margin);
+  num("ds_alphadot_max", o.ds_alphadot_max);
+  num("angle_margin", o.angle_margin);
+  num("ds_alpha_range_min", o.ds_alpha_range_min);
+  num("reach_margin", o.reach_margin);
+  num("kappa_min", o.kappa_min);
+  num("joint_limit_margin", o.joint_limit_margin);
+  flag("full_torque_envelope", o.full_torque_envelope);
+  num("target_speed", o.target_speed);
+  text("rotor", kRotorModels[mo.rotor == RotorModel::Exact ? 0 : 1]);
+  num("friction_smoothing", mo.friction_smoothing);
+  return out.str();
+}
+
+std::string gaitYaml(const std::string& robot_path_relative, const GaitParameters& p,
+                     const GaitOptions& options, const ModelOptions& model_options) {
+  std::ostringstream out;
+  const Parameterisation& par = options.parameterisation;
+  out << "# Gait file written by gaitopt: one walking step of Miossec's polynomial\n"
+         "# parametrisation (radians, metres, seconds) and the options it was evaluated with.\n"
+         "# Values are at full precision so that reading the file back is exact.\n";
+  out << "robot: " << yamlString(robot_path_relative) << "  # relative to this file\n";
+  if (!par.isThesis())
+    out << "parameterisation: {ss_points: " << par.ss_points << ", ds_points: " << par.ds_points
+        << "}\n";
+  out << "parameters:\n";
+  const std::vector<std::string> names = par.names();
+  for (int i = 0; i < par.size(); ++i) out << "  " << names[i] << ": " << formatDouble(p(i)) << '\n';
+  out << "options:\n" << gaitOptionsYaml(options, model_options, 2);
+  return out.str();
+}
+
+}  // namespace gaitopt

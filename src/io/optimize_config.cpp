@@ -1,0 +1,180 @@
+#include "gaitopt/io/optimize_config.hpp"
+
+#include "gaitopt/gait/refinement.hpp"
+
+#include <array>
+#include <cmath>
+
+#include "gaitopt/io/gait_file.hpp"
+#include "gaitopt/opt/initial_guess.hpp"
+#include "gaitopt/opt/nlp_solver.hpp"
+#include "gaitopt/io/robot_file.hpp"
+#include "gaitopt/io/yaml_reader.hpp"
+
+namespace gaitopt {
+
+namespace {
+
+// A string restricted to `choices`: the index of the value, or `fallback` when absent.
+template <std::size_t N>
+int choice(const YamlMap& m, const std::string& key, const std::array<const char*, N>& choices,
+           int fallback) {
+  if (!m.has(key)) {
+    m.optionalNumber(key);  // absent: only records the key as known
+    return fallback;
+  }
+  return choiceIndex(m, key, choices);
+}
+
+// An integer >= minimum, or `fallback` when absent.
+int integerOr(const YamlMap& m, const std::string& key, int minimum, int fallback) {
+  const std::optional<double> v = m.optionalNumber(key);
+  if (!v) return fallback;
+  if (std::floor(*v) != *v || *v < minimum || *v > 1e9) {
+    throw m.error(key, "must be an integer >= " + std::to_string(minimum) + ", got " +
+                           showNumber(*v));
+  }
+  return static_cast<int>(*v);
+}
+
+// Same order as the enums.
+const std::array<const char*, 3> kCriteria = {"C_Gamma", "C_E", "W"};
+const std::array<const char*, 3> kBackends = {"nlopt_slsqp", "ipopt", "nlopt_cobyla"};
+const std::array<const char*, 2> kHierarchies = {"staged", "direct"};
+const std::array<const char*, 2> kGradientModes = {"exact", "finite_difference"};
+const std::array<const char*, 1> kParameterisations = {"miossec"};
+
+// A referenced file must exist and be readable; otherwise the error is at the config's key.
+void requireReadable(const YamlMap& doc, const std::string& key, const std::string& what,
+                     const std::string& resolved, const std::string& given) {
+  requireReadableFile(doc, key, what, resolved, given, "configuration file");
+}
+
+SolverSettings parseSolver(const YamlMap& m) {
+  SolverSettings s;
+  switch (choice(m, "backend", kBackends, 0)) {
+    case 1: s.backend = Backend::Ipopt; break;
+    case 2: s.backend = Backend::NloptCobyla; break;
+    default: s.backend = Backend::NloptSlsqp; break;
+  }
+  s.hierarchy = choice(m, "hierarchy", kHierarchies, 0) == 1 ? HierarchyStrategy::Direct
+                                                              : HierarchyStrategy::Staged;
+  s.max_iter = integerOr(m, "max_iter", 1, s.max_iter);
+  if (const std::optional<double> tol = m.optionalNumber("tol")) {
+    if (!(*tol > 0.0)) throw m.error("tol", "must be > 0, got " + showNumber(*tol));
+    s.tol = *tol;
+  }
+  if (m.has("constraint_exchange")) s.constraint_exchange = m.boolean("constraint_exchange");
+  s.gradients = choice(m, "gradients", kGradientModes, 0) == 1 ? GradientMode::FiniteDifference
+                                                               : GradientMode::Exact;
+  s.print_every = integerOr(m, "print_every", 0, s.print_every);
+  if (const std::optional<YamlMap> ipopt = m.optionalMap("ipopt")) {
+    s.ipopt_options = ipopt->scalarEntries();
+    // Checked one by one so that the error names the first option Ipopt rejects.
+    for (const auto& option : s.ipopt_options) {
+      if (!rejectedIpoptOption({option}).empty()) {
+        throw ipopt->error(option.first, "Ipopt rejects this option or its value '" +
+                                             option.second +
+                                             "' (see the Ipopt options reference)");
+      }
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+OptimizeConfig loadOptimizeConfig(const std::string& path) {
+  OptimizeConfig c;
+  c.path = path;
+  const YamlMap doc(loadYamlFile(path), path, "");
+
+  const std::string robot = doc.string("robot");
+  if (robot.empty()) throw doc.error("robot", "must name the robot description file");
+  c.robot_path = resolveAgainstFile(path, robot);
+
+  if (const std::optional<YamlMap> options = doc.optionalMap("options")) {
+    if (options->has("target_speed")) {
+      throw options->error("target_speed",
+                           "not allowed here: the optimiser's target is the top-level 'speed'");
+    }
+    c.options = parseGaitOptions(*options, c.model_options);
+  }
+
+  switch (choice(doc, "criterion", kCriteria, 0)) {
+    case 1: c.criterion = Criterion::Energy; break;
+    case 2: c.criterion = Criterion::Work; break;
+    default: c.criterion = Criterion::Torque; break;
+  }
+
+  if (const std::optional<double> speed = doc.optionalNumber("speed")) {
+    if (!(*speed > 0.0)) {
+      throw doc.error("speed", "must be > 0 m/s (leave it out for a free speed), got " +
+                                   showNumber(*speed));
+    }
+    c.speed = *speed;
+  }
+  c.options.target_speed = c.speed.value_or(0.0);
+
+  c.options.parameterisation = parseParameterisation(doc);
+  c.parameterisation = c.options.parameterisation.label();
+
+  std::string initial = "default";
+  if (doc.has("initial_guess")) {
+    initial = doc.string("initial_guess");
+    if (initial.empty()) {
+      throw doc.error("initial_guess", "expected 'default' or a gait file, got an empty string");
+    }
+  } else {
+    doc.optionalNumber("initial_guess");
+  }
+
+  if (const std::optional<YamlMap> solver = doc.optionalMap("solver")) {
+    c.solver = parseSolver(*solver);
+  }
+  doc.rejectUnknownKeys();
+
+  requireReadable(doc, "robot", "robot file", c.robot_path, robot);
+  c.robot = loadRobot(c.robot_path);  // errors inside the robot file name that file
+
+  if (initial != "default") {
+    const std::string gait = resolveAgainstFile(path, initial);
+    requireReadable(doc, "initial_guess", "gait file", gait, initial);
+    c.initial_guess_path = gait;
+    const GaitFile guess = loadGaitFile(gait);  // errors name the gait file
+    c.initial_guess_parameters = guess.parameters;
+    c.initial_guess_parameterisation = guess.options.parameterisation;
+    if (guess.options.parameterisation.ss_points > c.options.parameterisation.ss_points ||
+        guess.options.parameterisation.ds_points > c.options.parameterisation.ds_points)
+      throw doc.error("initial_guess", "the gait file's parameterisation (" +
+                                           guess.options.parameterisation.label() +
+                                           ") is richer than the configured one (" +
+                                           c.parameterisation + ")");
+  }
+  return c;
+}
+
+GaitParameters configuredInitialGuess(const OptimizeConfig& config, const Model& model) {
+  const GaitParameters p = config.initial_guess_path ? config.initial_guess_parameters
+                                                     : defaultInitialGuess(model, config.speed);
+  const Parameterisation from =
+      config.initial_guess_path ? config.initial_guess_parameterisation : Parameterisation{};
+  if (from == config.options.parameterisation) return p;
+  // A coarser start is written in the configured parameterisation without changing its motion.
+  GaitOptions coarse = config.options;
+  coarse.parameterisation = from;
+  return refineParameters(GaitEvaluator(config.robot, coarse, config.model_options), p,
+                          config.options.parameterisation);
+}
+
+OptimizationRequest optimizationRequest(const OptimizeConfig& config,
+                                        const GaitParameters& initial) {
+  OptimizationRequest r;
+  r.criterion = config.criterion;
+  r.speed = config.speed;
+  r.initial = initial;
+  r.solver = config.solver;
+  return r;
+}
+
+}  // namespace gaitopt

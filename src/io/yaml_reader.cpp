@@ -1,0 +1,268 @@
+#include "gaitopt/io/yaml_reader.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <utility>
+
+namespace gaitopt {
+
+namespace {
+
+using Entry = std::pair<YAML::Node, YAML::Node>;  // (key node, value node)
+
+// yaml-cpp marks are 0-based with -1 for "no position"; messages use 1-based, 0 = unknown.
+int lineOf(const YAML::Mark& mark) { return mark.line >= 0 ? mark.line + 1 : 0; }
+int lineOf(const YAML::Node& node) { return lineOf(node.Mark()); }
+
+// yaml-cpp tags quoted scalars "!" and plain ones "?": a quoted "5" is text, not a number.
+bool isQuoted(const YAML::Node& node) { return node.Tag() == "!"; }
+
+std::string describe(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Sequence: return "a sequence";
+    case YAML::NodeType::Map: return "a mapping";
+    case YAML::NodeType::Scalar:
+      return isQuoted(node) ? "the quoted string \"" + node.Scalar() + "\""
+                            : "'" + node.Scalar() + "'";
+    default: return "nothing (null)";
+  }
+}
+
+std::optional<Entry> lookup(const YAML::Node& map, const std::string& key) {
+  for (const auto& kv : map) {
+    if (kv.first.Scalar() == key) return Entry{kv.first, kv.second};
+  }
+  return std::nullopt;
+}
+
+double toNumber(const YAML::Node& value, const std::string& file, const std::string& path,
+                int line) {
+  double number = 0.0;
+  if (!value.IsScalar() || isQuoted(value) || !YAML::convert<double>::decode(value, number)) {
+    throw ConfigError(file, path, line, "expected a number, got " + describe(value));
+  }
+  if (!std::isfinite(number)) {
+    throw ConfigError(file, path, line, "expected a finite number, got " + describe(value));
+  }
+  return number;
+}
+
+std::string elementPath(const std::string& sequence_path, std::size_t index) {
+  return sequence_path + "[" + std::to_string(index) + "]";
+}
+
+std::string joined(const std::set<std::string>& names) {
+  std::string list;
+  for (const auto& name : names) list += (list.empty() ? "" : ", ") + name;
+  return list;
+}
+
+}  // namespace
+
+struct YamlMap::State {
+  YAML::Node node;
+  std::string file;
+  std::string prefix;
+  int line = 0;
+  std::set<std::string> known;    // every key asked for, present or not
+  std::vector<YamlMap> children;  // mappings opened from this one, for rejectUnknownKeys()
+};
+
+YAML::Node loadYamlFile(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw ConfigError(path, "", 0, "no such file (or not a regular file)");
+  }
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path, "", 0, "cannot open the file for reading");
+  try {
+    return YAML::Load(in);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(path, "", lineOf(e.mark), "invalid YAML: " + e.msg);
+  }
+}
+
+YamlMap::YamlMap(const YAML::Node& node, std::string file, std::string path_prefix)
+    : YamlMap(node, std::move(file), std::move(path_prefix), lineOf(node)) {}
+
+YamlMap::YamlMap(const YAML::Node& node, std::string file, std::string path_prefix, int line)
+    : state_(std::make_shared<State>()) {
+  state_->node = node;
+  state_->file = std::move(file);
+  state_->prefix = std::move(path_prefix);
+  state_->line = line;
+  if (!node.IsMap()) {
+    throw ConfigError(state_->file, state_->prefix, line,
+                      "expected a mapping, got " + describe(node));
+  }
+  std::set<std::string> seen;
+  for (const auto& kv : node) {
+    // A repeated key is almost always an editing slip; yaml-cpp would keep the first silently.
+    if (!kv.first.IsScalar() || !seen.insert(kv.first.Scalar()).second) {
+      throw ConfigError(state_->file, path(kv.first.Scalar()), lineOf(kv.first),
+                        kv.first.IsScalar() ? "duplicate key" : "keys must be plain names");
+    }
+  }
+}
+
+const std::string& YamlMap::file() const { return state_->file; }
+
+std::string YamlMap::path(const std::string& key) const {
+  return state_->prefix.empty() ? key : state_->prefix + "." + key;
+}
+
+int YamlMap::line() const { return state_->line; }
+
+bool YamlMap::has(const std::string& key) const { return lookup(state_->node, key).has_value(); }
+
+bool YamlMap::hasMapping(const std::string& key) const {
+  const auto entry = lookup(state_->node, key);
+  return entry && entry->second.IsMap();
+}
+
+std::optional<Entry> YamlMap::find(const std::string& key) const {
+  state_->known.insert(key);
+  return lookup(state_->node, key);
+}
+
+Entry YamlMap::require(const std::string& key) const {
+  auto entry = find(key);
+  if (!entry) throw ConfigError(file(), path(key), line(), "required key is missing");
+  return *entry;
+}
+
+double YamlMap::number(const std::string& key) const {
+  const auto [k, v] = require(key);
+  return toNumber(v, file(), path(key), lineOf(k));
+}
+
+std::optional<double> YamlMap::optionalNumber(const std::string& key) const {
+  if (!has(key)) {
+    state_->known.insert(key);
+    return std::nullopt;
+  }
+  return number(key);
+}
+
+std::string YamlMap::string(const std::string& key) const {
+  const YAML::Node v = require(key).second;
+  if (!v.IsScalar()) throw error(key, "expected a string, got " + describe(v));
+  return v.Scalar();
+}
+
+bool YamlMap::boolean(const std::string& key) const {
+  const YAML::Node v = require(key).second;
+  bool value = false;
+  if (!v.IsScalar() || isQuoted(v) || !YAML::convert<bool>::decode(v, value)) {
+    throw error(key, "expected true or false, got " + describe(v));
+  }
+  return value;
+}
+
+std::vector<double> YamlMap::numbers(const std::string& key, std::size_t expected_size) const {
+  const YAML::Node v = require(key).second;
+  const std::string expected =
+      "expected a sequence of " + std::to_string(expected_size) + " numbers";
+  if (!v.IsSequence()) throw error(key, expected + ", got " + describe(v));
+  if (v.size() != expected_size) {
+    throw error(key, expected + ", got " + std::to_string(v.size()));
+  }
+  std::vector<double> values;
+  for (std::size_t i = 0; i < expected_size; ++i) {
+    values.push_back(toNumber(v[i], file(), elementPath(path(key), i), lineOf(v[i])));
+  }
+  return values;
+}
+
+YamlMap YamlMap::map(const std::string& key) const {
+  const auto [k, v] = require(key);
+  YamlMap child(v, file(), path(key), lineOf(k));
+  state_->children.push_back(child);
+  return child;
+}
+
+std::optional<YamlMap> YamlMap::optionalMap(const std::string& key) const {
+  if (!has(key)) {
+    state_->known.insert(key);
+    return std::nullopt;
+  }
+  return map(key);
+}
+
+std::vector<std::pair<std::string, std::string>> YamlMap::scalarEntries() const {
+  std::vector<std::pair<std::string, std::string>> entries;
+  for (const auto& kv : state_->node) {
+    const std::string key = kv.first.Scalar();
+    state_->known.insert(key);
+    if (!kv.second.IsScalar()) {
+      throw error(key, "expected a single value, got " + describe(kv.second));
+    }
+    entries.emplace_back(key, kv.second.Scalar());
+  }
+  return entries;
+}
+
+void YamlMap::rejectUnknownKeys() const {
+  for (const auto& kv : state_->node) {
+    if (state_->known.count(kv.first.Scalar()) == 0) {
+      throw ConfigError(file(), path(kv.first.Scalar()), lineOf(kv.first),
+                        "unknown key (expected one of: " + joined(state_->known) + ")");
+    }
+  }
+  for (const auto& child : state_->children) child.rejectUnknownKeys();
+}
+
+ConfigError YamlMap::error(const std::string& key, const std::string& problem) const {
+  const auto entry = lookup(state_->node, key);
+  return ConfigError(file(), path(key), entry ? lineOf(entry->first) : line(), problem);
+}
+
+ConfigError YamlMap::elementError(const std::string& key, std::size_t index,
+                                  const std::string& problem) const {
+  const auto entry = lookup(state_->node, key);
+  int at = entry ? lineOf(entry->first) : line();
+  if (entry && entry->second.IsSequence() && index < entry->second.size()) {
+    at = lineOf(entry->second[index]);
+  }
+  return ConfigError(file(), elementPath(path(key), index), at, problem);
+}
+
+std::string showNumber(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+int choiceIndex(const YamlMap& m, const std::string& key, const char* const* choices,
+                std::size_t count) {
+  const std::string v = m.string(key);
+  std::string list;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (v == choices[i]) return static_cast<int>(i);
+    list += (i == 0 ? "'" : ", '") + std::string(choices[i]) + "'";
+  }
+  throw m.error(key, "expected one of " + list + ", got '" + v + "'");
+}
+
+std::string resolveAgainstFile(const std::string& config_path, const std::string& file) {
+  const std::filesystem::path f(file);
+  if (f.is_absolute()) return f.lexically_normal().string();
+  return (std::filesystem::path(config_path).parent_path() / f).lexically_normal().string();
+}
+
+void requireReadableFile(const YamlMap& doc, const std::string& key, const std::string& what,
+                         const std::string& resolved, const std::string& given,
+                         const std::string& document) {
+  std::error_code ec;
+  const std::string where = what + " '" + resolved + "' (from '" + given + "', relative to the " +
+                            document + "'s directory)";
+  if (!std::filesystem::is_regular_file(resolved, ec)) {
+    throw doc.error(key, where + " does not exist or is not a regular file");
+  }
+  if (!std::ifstream(resolved)) throw doc.error(key, where + " cannot be read");
+}
+
+}  // namespace gaitopt

@@ -1,0 +1,60 @@
+#include "gaitopt/opt/evaluation_cache.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gaitopt {
+
+const GaitEvaluation<double>& GaitEvaluationCache::values(const GaitParameters& p) {
+  if (gradient_at_ && *gradient_at_ == p) return gradient_.value;
+  if (!value_at_ || *value_at_ != p) {
+    values_ = evaluator_.evaluate(p);
+    value_at_ = p;
+    ++value_count_;
+  }
+  return values_;
+}
+
+const GaitGradient& GaitEvaluationCache::gradient(const GaitParameters& p) {
+  if (!gradient_at_ || *gradient_at_ != p) {
+    gradient_ = mode_ == GradientMode::Exact ? evaluator_.evaluateWithGradient(p)
+                                             : finiteDifferenceGradient(p);
+    gradient_at_ = p;
+    ++gradient_count_;
+  }
+  return gradient_;
+}
+
+// Step h_i = 1e-6 · max(1, |p_i|): near the optimum of the truncation/rounding trade-off for
+// central differences of double-precision values.
+GaitGradient GaitEvaluationCache::finiteDifferenceGradient(const GaitParameters& p) {
+  GaitGradient r;
+  r.value = evaluator_.evaluate(p);
+  const int m = evaluator_.layout().size();
+  const int n = static_cast<int>(p.size());
+  r.dg.setZero(m, n);
+  for (GaitParameters* g : {&r.dC_Gamma, &r.dC_E, &r.dW, &r.dC_frott, &r.dT_SS, &r.dT_DS, &r.dspeed})
+    g->setZero(n);
+  for (int i = 0; i < n; ++i) {
+    const double h = 1e-6 * std::max(1.0, std::abs(p(i)));
+    GaitParameters pp = p, pm = p;
+    pp(i) += h;
+    pm(i) -= h;
+    const GaitEvaluation<double> ep = evaluator_.evaluate(pp), em = evaluator_.evaluate(pm);
+    value_count_ += 2;
+    const auto diff = [h](double a, double b) { return (a - b) / (2.0 * h); };
+    for (int k = 0; k < m; ++k)
+      if (ep.state[k] != ConstraintState::NotComputed && em.state[k] != ConstraintState::NotComputed)
+        r.dg(k, i) = diff(ep.g[k], em.g[k]);
+    r.dC_Gamma(i) = diff(ep.C_Gamma, em.C_Gamma);
+    r.dC_E(i) = diff(ep.C_E, em.C_E);
+    r.dW(i) = diff(ep.W, em.W);
+    r.dC_frott(i) = diff(ep.C_frott, em.C_frott);
+    r.dT_SS(i) = diff(ep.T_SS, em.T_SS);
+    r.dT_DS(i) = diff(ep.T_DS, em.T_DS);
+    r.dspeed(i) = diff(ep.speed, em.speed);
+  }
+  return r;
+}
+
+}  // namespace gaitopt

@@ -1,0 +1,219 @@
+#include "gaitopt/opt/gait_problem.hpp"
+
+#include <cmath>
+
+namespace gaitopt {
+namespace {
+
+constexpr double kInf = 1e20;
+
+GaitParameters toParameters(const VectorX& x) { return GaitParameters(x); }
+
+bool motionAvailable(const GaitEvaluation<double>& e) { return e.motion_computed; }
+
+const GaitParameters& criterionGradient(const GaitGradient& g, Criterion c) {
+  return c == Criterion::Torque ? g.dC_Gamma : c == Criterion::Energy ? g.dC_E : g.dW;
+}
+
+class CriterionCost : public CostTerm {
+ public:
+  CriterionCost(GaitEvaluationCache& cache, Criterion c, double scale)
+      : cache_(cache), criterion_(c), scale_(scale) {}
+  std::string name() const override { return criterionName(criterion_); }
+  bool value(const VectorX& x, double& f) override {
+    const GaitEvaluation<double>& e = cache_.values(toParameters(x));
+    if (!motionAvailable(e)) return false;
+    f = criterionValue(e, criterion_) / scale_;
+    return true;
+  }
+  bool gradient(const VectorX& x, Eigen::Ref<VectorX> grad) override {
+    const GaitGradient& g = cache_.gradient(toParameters(x));
+    if (!motionAvailable(g.value)) return false;
+    grad = criterionGradient(g, criterion_) / scale_;
+    return true;
+  }
+
+ private:
+  GaitEvaluationCache& cache_;
+  Criterion criterion_;
+  double scale_;
+};
+
+class DistanceCost : public CostTerm {
+ public:
+  DistanceCost(const GaitParameters& ref, const Parameterisation& par)
+      : ref_(ref), w_(parameterScales(par).cwiseInverse().cwiseAbs2()) {}
+  std::string name() const override { return "distance"; }
+  bool value(const VectorX& x, double& f) override {
+    f = (x - ref_).cwiseAbs2().dot(w_);  // (3.78) in the scaled norm
+    return true;
+  }
+  bool gradient(const VectorX& x, Eigen::Ref<VectorX> grad) override {
+    grad = 2.0 * w_.cwiseProduct(x - ref_);
+    return true;
+  }
+
+ private:
+  GaitParameters ref_, w_;
+};
+
+class HierarchyConstraints : public ConstraintSet {
+ public:
+  HierarchyConstraints(GaitEvaluationCache& cache, const std::vector<int>& entries,
+                       double interior, double level5_interior)
+      : cache_(cache), rows_(entries), interior_(interior), level5_interior_(level5_interior) {
+    const ConstraintLayout& layout = cache.evaluator().layout();
+    for (int e : rows_) scales_.push_back(constraintScale(layout, cache.evaluator().model(), e));
+  }
+  std::string name() const override { return "hierarchy"; }
+  int size() const override { return static_cast<int>(rows_.size()); }
+  void bounds(Eigen::Ref<VectorX> lower, Eigen::Ref<VectorX> upper) const override {
+    // The evaluator fails levels 0–4 at g > 0, so the solver aims strictly inside them (its own
+    // feasibility tolerance would otherwise leave g ≈ +1e-7·scale); level 5 only when asked.
+    lower.setConstant(-kInf);
+    const ConstraintLayout& layout = cache_.evaluator().layout();
+    for (int i = 0; i < size(); ++i)
+      upper(i) = layout.levelOf(rows_[i]) < 5 ? -interior_ : -level5_interior_;
+  }
+  bool values(const VectorX& x, Eigen::Ref<VectorX> g) override {
+    const GaitEvaluation<double>& e = cache_.values(toParameters(x));
+    for (int i = 0; i < size(); ++i) {
+      if (e.state[rows_[i]] == ConstraintState::NotComputed) return false;
+      g(i) = e.g[rows_[i]] / scales_[i];
+    }
+    return true;
+  }
+  bool jacobian(const VectorX& x, Eigen::Ref<MatrixX> jac) override {
+    const GaitGradient& gr = cache_.gradient(toParameters(x));
+    for (int i = 0; i < size(); ++i) {
+      if (gr.value.state[rows_[i]] == ConstraintState::NotComputed) return false;
+      jac.row(i) = gr.dg.row(rows_[i]) / scales_[i];
+    }
+    return true;
+  }
+  int layoutEntry(int row) const { return rows_[row]; }
+
+ private:
+  GaitEvaluationCache& cache_;
+  std::vector<int> rows_;
+  std::vector<double> scales_;
+  double interior_, level5_interior_;
+};
+
+class SpeedConstraint : public ConstraintSet {
+ public:
+  SpeedConstraint(GaitEvaluationCache& cache, double speed) : cache_(cache), speed_(speed) {}
+  std::string name() const override { return "speed"; }
+  int size() const override { return 1; }
+  void bounds(Eigen::Ref<VectorX> lower, Eigen::Ref<VectorX> upper) const override {
+    lower.setZero();
+    upper.setZero();
+  }
+  bool values(const VectorX& x, Eigen::Ref<VectorX> g) override {
+    const GaitEvaluation<double>& e = cache_.values(toParameters(x));
+    if (e.state[cache_.evaluator().layout()[kNoFallBack].offset] ==
+        ConstraintState::NotComputed)
+      return false;
+    g(0) = e.speed - speed_;  // (3.50)
+    return true;
+  }
+  bool jacobian(const VectorX& x, Eigen::Ref<MatrixX> jac) override {
+    const GaitGradient& gr = cache_.gradient(toParameters(x));
+    if (gr.value.state[cache_.evaluator().layout()[kNoFallBack].offset] ==
+        ConstraintState::NotComputed)
+      return false;
+    jac.row(0) = gr.dspeed.transpose();
+    return true;
+  }
+
+ private:
+  GaitEvaluationCache& cache_;
+  double speed_;
+};
+
+}  // namespace
+
+double criterionValue(const GaitEvaluation<double>& e, Criterion c) {
+  return c == Criterion::Torque ? e.C_Gamma : c == Criterion::Energy ? e.C_E : e.W;
+}
+
+// Typical magnitude of each constraint group's values (so Ipopt sees O(1) rows).
+double constraintGroupScale(int group, const Model& m) {
+  const double reach = std::pow(m.robot.l4 + m.robot.l5, 2);
+  const double weight = m.total_mass * m.gravity;
+  switch (group) {
+    case kReachMaxIDS: case kReachMinIDS: case kReachMaxFDS: case kReachMinFDS:
+    case kReachMaxInt: case kReachMinInt: case kDsReachMax: case kDsReachMin:
+      return reach;
+    case kFPositive: return 10.0;
+    case kTorqueSS: case kTorqueDS: return m.robot.envelope.torque[0];
+    case kFrictionConeSS: case kFrictionConeDS: case kNormalForceSS: case kNormalForceDS:
+      return weight;
+    case kClearance: return 0.05;
+    default: return 1.0;  // angles [rad], angular rates [rad/s], κ
+  }
+}
+
+const char* criterionName(Criterion c) {
+  return c == Criterion::Torque ? "C_Gamma" : c == Criterion::Energy ? "C_E" : "W";
+}
+
+GaitParameters parameterScales(const Parameterisation& par) {
+  GaitParameters s(kNumGaitParameters);
+  // α, δ1, θ3, d, α, δ1, θ3, δ1, θ3, x2r, z2, α̇, δ1*, δ2*, δ1*, δ2*, T_DS
+  s << 0.1, 0.1, 0.1, 0.05, 0.1, 0.1, 0.1, 0.1, 0.1, 0.05, 0.02, 0.2, 0.5, 0.5, 0.5, 0.5, 0.05;
+  return extendPerParameter(s, par, {0.1, 0.1}, {0.1, 0.1});
+}
+
+VariableSet gaitVariables(const Model& m, const GaitParameters& initial,
+                          const Parameterisation& par) {
+  const JointLimits& jl = m.robot.limits;
+  const double up = 0.5 * M_PI;
+  GaitParameters lo(kNumGaitParameters), hi(kNumGaitParameters);
+  lo << -1.2, jl.knee_min, up - 1.0, 0.05, -1.2, jl.knee_min, up - 1.0, jl.knee_min, up - 1.0,
+      -0.8, 0.0, -10.0, -10.0, -10.0, -10.0, -10.0, 0.01;
+  hi << 1.2, jl.knee_max, up + 1.0, 1.0, 1.2, jl.knee_max, up + 1.0, jl.knee_max, up + 1.0, 0.8,
+      0.5, -0.01, 10.0, 10.0, 10.0, 10.0, 1.0;
+  VariableSet v;
+  v.names = par.names();
+  // Extra SS points: δ3 (inter-leg angle) within ±π, δ4 within the knee limits.
+  v.lower = extendPerParameter(lo, par, {-M_PI, jl.knee_min}, {jl.knee_min, up - 1.0});
+  v.upper = extendPerParameter(hi, par, {M_PI, jl.knee_max}, {jl.knee_max, up + 1.0});
+  v.initial = initial.cwiseMax(v.lower).cwiseMin(v.upper);
+  return v;
+}
+
+std::unique_ptr<CostTerm> makeCriterionCost(GaitEvaluationCache& cache, Criterion criterion,
+                                            double scale) {
+  return std::make_unique<CriterionCost>(cache, criterion, scale);
+}
+
+std::unique_ptr<CostTerm> makeDistanceCost(const GaitParameters& reference,
+                                           const Parameterisation& par) {
+  return std::make_unique<DistanceCost>(reference, par);
+}
+
+double constraintScale(const ConstraintLayout& layout, const Model& m, int entry) {
+  for (int g = 0; g < kNumConstraintGroups; ++g)
+    if (entry < layout[g].offset + layout[g].count) return constraintGroupScale(g, m);
+  return 1.0;
+}
+
+std::vector<int> hierarchyEntries(const ConstraintLayout& layout, int max_level) {
+  std::vector<int> entries;
+  for (int k = 0; k < layout.size(); ++k)
+    if (layout.levelOf(k) <= max_level) entries.push_back(k);
+  return entries;
+}
+
+std::unique_ptr<ConstraintSet> makeHierarchyConstraints(GaitEvaluationCache& cache,
+                                                        const std::vector<int>& entries,
+                                                        double interior, double level5_interior) {
+  return std::make_unique<HierarchyConstraints>(cache, entries, interior, level5_interior);
+}
+
+std::unique_ptr<ConstraintSet> makeSpeedConstraint(GaitEvaluationCache& cache, double speed) {
+  return std::make_unique<SpeedConstraint>(cache, speed);
+}
+
+}  // namespace gaitopt

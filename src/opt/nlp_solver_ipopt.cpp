@@ -1,0 +1,177 @@
+// Ipopt TNLP adapter: translates NlpProblem calls; an undefined evaluation returns false, which
+// makes Ipopt shorten its step (or enter restoration) instead of crashing.
+#include <IpIpoptApplication.hpp>
+#include <IpTNLP.hpp>
+#include <cstdio>
+#include <cstdlib>
+
+#include "gaitopt/opt/nlp_solver.hpp"
+
+namespace gaitopt {
+namespace {
+
+using Ipopt::Index;
+using Ipopt::Number;
+
+class TnlpAdapter : public Ipopt::TNLP {
+ public:
+  TnlpAdapter(NlpProblem& p, const NlpSettings& s) : problem_(p), settings_(s) {}
+
+  bool get_nlp_info(Index& n, Index& m, Index& nnz_jac, Index& nnz_h,
+                    IndexStyleEnum& style) override {
+    n = problem_.variables().size();
+    m = problem_.numConstraints();
+    nnz_jac = n * m;  // dense: every constraint depends on every gait parameter
+    nnz_h = 0;
+    style = C_STYLE;
+    return true;
+  }
+  bool get_bounds_info(Index n, Number* xl, Number* xu, Index m, Number* gl,
+                       Number* gu) override {
+    Eigen::Map<VectorX>(xl, n) = problem_.variables().lower;
+    Eigen::Map<VectorX>(xu, n) = problem_.variables().upper;
+    VectorX lo, hi;
+    problem_.constraintBounds(lo, hi);
+    Eigen::Map<VectorX>(gl, m) = lo;
+    Eigen::Map<VectorX>(gu, m) = hi;
+    return true;
+  }
+  bool get_starting_point(Index n, bool, Number* x, bool, Number*, Number*, Index, bool,
+                          Number*) override {
+    Eigen::Map<VectorX>(x, n) = problem_.variables().initial;
+    return true;
+  }
+  bool eval_f(Index n, const Number* x, bool, Number& f) override {
+    return problem_.cost(VectorX(Eigen::Map<const VectorX>(x, n)), f);
+  }
+  bool eval_grad_f(Index n, const Number* x, bool, Number* grad) override {
+    VectorX g;
+    if (!problem_.costGradient(VectorX(Eigen::Map<const VectorX>(x, n)), g)) return false;
+    Eigen::Map<VectorX>(grad, n) = g;
+    return true;
+  }
+  bool eval_g(Index n, const Number* x, bool, Index m, Number* g) override {
+    VectorX v;
+    if (!problem_.constraints(VectorX(Eigen::Map<const VectorX>(x, n)), v)) return false;
+    Eigen::Map<VectorX>(g, m) = v;
+    return true;
+  }
+  bool eval_jac_g(Index n, const Number* x, bool, Index m, Index, Index* rows, Index* cols,
+                  Number* values) override {
+    if (values == nullptr) {
+      for (Index i = 0, k = 0; i < m; ++i)
+        for (Index j = 0; j < n; ++j, ++k) {
+          rows[k] = i;
+          cols[k] = j;
+        }
+      return true;
+    }
+    MatrixX jac;
+    if (!problem_.constraintJacobian(VectorX(Eigen::Map<const VectorX>(x, n)), jac)) return false;
+    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(values, m,
+                                                                                       n) = jac;
+    return true;
+  }
+  void finalize_solution(Ipopt::SolverReturn status, Index n, const Number* x, const Number*,
+                         const Number*, Index, const Number*, const Number*, Number obj,
+                         const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
+    solution_.x = Eigen::Map<const VectorX>(x, n);
+    solution_.objective = obj;
+    solution_.status = toStatus(status);
+  }
+  bool intermediate_callback(Ipopt::AlgorithmMode mode, Index iter, Number obj, Number inf_pr,
+                             Number inf_du, Number, Number, Number, Number, Number, Index,
+                             const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
+    solution_.iterations = iter;
+    if (settings_.log && settings_.print_every > 0 && iter % settings_.print_every == 0) {
+      char line[160];
+      std::snprintf(line, sizeof line, "[%s] iter %4d  objective %.8e  violation %.3e  dual %.3e%s\n",
+                    settings_.label.c_str(), static_cast<int>(iter), obj, inf_pr, inf_du,
+                    mode == Ipopt::RestorationPhaseMode ? "  (restoration)" : "");
+      *settings_.log << line << std::flush;
+    }
+    return true;
+  }
+  const NlpSolution& solution() const { return solution_; }
+
+ private:
+  static NlpStatus toStatus(Ipopt::SolverReturn s) {
+    switch (s) {
+      case Ipopt::SUCCESS:
+      case Ipopt::STOP_AT_ACCEPTABLE_POINT: return NlpStatus::Solved;
+      case Ipopt::LOCAL_INFEASIBILITY: return NlpStatus::Infeasible;
+      case Ipopt::MAXITER_EXCEEDED:
+      case Ipopt::CPUTIME_EXCEEDED: return NlpStatus::MaxIterations;
+      default: return NlpStatus::Failed;
+    }
+  }
+  NlpProblem& problem_;
+  const NlpSettings& settings_;
+  NlpSolution solution_;
+};
+
+// Integer-looking values as integers, other numbers as reals, the rest as strings; the key of
+// the first option Ipopt rejects, or "".
+std::string applyIpoptOptions(Ipopt::OptionsList& o,
+                              const std::vector<std::pair<std::string, std::string>>& options) {
+  for (const auto& [key, value] : options) {
+    char* end = nullptr;
+    const long integer = std::strtol(value.c_str(), &end, 10);
+    bool ok;
+    if (!value.empty() && *end == '\0') {
+      ok = o.SetIntegerValue(key, static_cast<Index>(integer));
+    } else {
+      const double real = std::strtod(value.c_str(), &end);
+      ok = (!value.empty() && *end == '\0') ? o.SetNumericValue(key, real)
+                                             : o.SetStringValue(key, value);
+    }
+    if (!ok) return key;
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string rejectedIpoptOption(const std::vector<std::pair<std::string, std::string>>& options) {
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+  app->Options()->SetIntegerValue("print_level", 0);
+  app->Jnlst()->DeleteAllJournals();
+  return applyIpoptOptions(*app->Options(), options);
+}
+
+NlpSolution solveWithIpopt(NlpProblem& problem, const NlpSettings& settings) {
+  Ipopt::SmartPtr<TnlpAdapter> nlp = new TnlpAdapter(problem, settings);
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+  Ipopt::OptionsList& o = *app->Options();
+  o.SetIntegerValue("print_level", 0);
+  o.SetStringValue("sb", "yes");
+  o.SetStringValue("hessian_approximation", "limited-memory");
+  o.SetStringValue("mu_strategy", "adaptive");
+  o.SetIntegerValue("max_iter", settings.max_iter);
+  o.SetNumericValue("tol", settings.tol);
+  o.SetNumericValue("constr_viol_tol", settings.constraint_tol);
+  o.SetNumericValue("acceptable_constr_viol_tol", settings.constraint_tol);
+  applyIpoptOptions(o, settings.ipopt_options);
+  NlpSolution failed;
+  failed.x = problem.variables().initial;
+  if (app->Initialize() != Ipopt::Solve_Succeeded) {
+    failed.message = "Ipopt could not be initialised";
+    return failed;
+  }
+  const Ipopt::ApplicationReturnStatus st = app->OptimizeTNLP(nlp);
+  NlpSolution sol = nlp->solution();
+  if (sol.x.size() == 0) sol = failed;
+  sol.message = "Ipopt return status " + std::to_string(static_cast<int>(st));
+  return sol;
+}
+
+const char* nlpStatusName(NlpStatus s) {
+  switch (s) {
+    case NlpStatus::Solved: return "solved";
+    case NlpStatus::Infeasible: return "infeasible";
+    case NlpStatus::MaxIterations: return "max_iter";
+    default: return "failed";
+  }
+}
+
+}  // namespace gaitopt

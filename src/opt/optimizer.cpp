@@ -1,0 +1,244 @@
+#include "gaitopt/opt/optimizer.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace gaitopt {
+namespace {
+
+// A scaled constraint value g/scale at or below this counts as met (ten times the solver's own
+// feasibility tolerance, to absorb the last iterate's slack); also applies to |speed − v|.
+constexpr double kFeasibilityTol = 1e-6;
+// Exchange method for the semi-infinite constraints: a grid entry joins the NLP once its
+// scaled value exceeds −kScreenThreshold; the full grid is re-checked after each solve.
+constexpr double kScreenThreshold = 0.3;
+constexpr int kMaxExchangeRounds = 8;
+// Projections aim this far inside the lower levels (scaled units): a point on their boundary
+// (e.g. a DS with the minimum α range) is a poor start for the next stage.
+constexpr double kProjectionInterior = 0.05;
+// Full stage: strictly inside levels 0–4; the final polish also inside level 5, so that the
+// optimum satisfies the evaluator's strict g ≤ 0 everywhere.
+constexpr double kInterior = 1e-6;
+
+NlpSolution solve(NlpProblem& problem, const SolverSettings& s, const std::string& label,
+                  std::ostream* log) {
+  NlpSettings ns;
+  ns.max_iter = s.max_iter;
+  ns.tol = s.tol;
+  ns.ipopt_options = s.ipopt_options;
+  ns.label = label;
+  ns.print_every = s.print_every;
+  ns.log = log;
+  switch (s.backend) {
+    case Backend::NloptSlsqp: return solveWithNlopt(problem, ns, NloptMethod::Slsqp);
+    case Backend::NloptCobyla: return solveWithNlopt(problem, ns, NloptMethod::Cobyla);
+    default: return solveWithIpopt(problem, ns);
+  }
+}
+
+double scaledValue(const GaitEvaluator& ev, const GaitEvaluation<double>& e, int k) {
+  return e.g[k] / constraintScale(ev.layout(), ev.model(), k);
+}
+
+// Lowest level ≤ max_level with a violated (computed) entry, −1 if none.
+int lowestViolatedLevel(const GaitEvaluator& ev, const GaitEvaluation<double>& e, int max_level) {
+  const ConstraintLayout& layout = ev.layout();
+  int lowest = -1;
+  for (int k = 0; k < layout.size(); ++k)
+    if (e.state[k] != ConstraintState::NotComputed && layout.levelOf(k) <= max_level &&
+        scaledValue(ev, e, k) > kFeasibilityTol && (lowest < 0 || layout.levelOf(k) < lowest))
+      lowest = layout.levelOf(k);
+  return lowest;
+}
+
+// Adds to `entries` the grid entries of levels ≤ max_level that are violated, close to active,
+// or not computable at the evaluation; returns how many were added.
+int screenEntries(const GaitEvaluator& ev, const GaitEvaluation<double>& e, int max_level,
+                  std::vector<int>& entries) {
+  std::vector<bool> in(ev.layout().size(), false);
+  for (int k : entries) in[k] = true;
+  int added = 0;
+  for (int k : hierarchyEntries(ev.layout(), max_level))
+    if (!in[k] && (e.state[k] == ConstraintState::NotComputed ||
+                   scaledValue(ev, e, k) > -kScreenThreshold)) {
+      entries.push_back(k);
+      ++added;
+    }
+  std::sort(entries.begin(), entries.end());
+  return added;
+}
+
+// Solves one stage with the exchange method; `build` adds the cost (and speed) to a problem.
+template <class Build>
+NlpSolution solveStage(GaitEvaluationCache& cache, const GaitParameters& start, int max_level,
+                       double interior, double level5_interior, const SolverSettings& s,
+                       const std::string& label, std::ostream* log, OptimizationResult& result,
+                       const Build& build) {
+  const GaitEvaluator& ev = cache.evaluator();
+  std::vector<int> entries;
+  if (s.constraint_exchange)
+    screenEntries(ev, cache.values(start), max_level, entries);
+  else
+    entries = hierarchyEntries(ev.layout(), max_level);
+  NlpSolution sol;
+  sol.x = start;
+  for (int round = 0; round < kMaxExchangeRounds; ++round) {
+    NlpProblem problem(gaitVariables(ev.model(), sol.x, ev.options().parameterisation));
+    build(problem);
+    problem.addConstraints(makeHierarchyConstraints(cache, entries, interior, level5_interior));
+    const std::string name = label + " (" + std::to_string(entries.size()) + " grid entries)";
+    const NlpSolution next = solve(problem, s, name, log);
+    result.stages.push_back({name, next.status, next.iterations});
+    result.iterations += next.iterations;
+    sol = next;
+    if (screenEntries(ev, cache.values(sol.x), max_level, entries) == 0) break;
+  }
+  return sol;
+}
+
+// Nearest point (scaled norm) satisfying the levels ≤ max_level, (3.78).
+GaitParameters project(GaitEvaluationCache& cache, const GaitParameters& start, int max_level,
+                       const SolverSettings& s, const std::string& label, std::ostream* log,
+                       OptimizationResult& result) {
+  // Ipopt for every projection: it refuses undefined trial points natively (eval returns
+  // false), where SLSQP's backtracking on a huge cost measured unreliable.
+  SolverSettings projection = s;
+  projection.backend = Backend::Ipopt;
+  return solveStage(cache, start, max_level, kProjectionInterior, 0.0, projection, label, log, result,
+                    [&](NlpProblem& problem) { problem.addCost(makeDistanceCost(start, cache.evaluator().options().parameterisation)); })
+      .x;
+}
+
+bool meetsAll(const GaitEvaluator& ev, const OptimizationRequest& req,
+              const GaitEvaluation<double>& e) {
+  return e.motion_computed && lowestViolatedLevel(ev, e, 5) < 0 &&
+         (!req.speed || std::abs(e.speed - *req.speed) <= kFeasibilityTol);
+}
+
+// From an optimum, the same problem with every bound kInterior inside: a small continuation
+// step (it cannot jump to another local optimum) after which the evaluator's strict g ≤ 0
+// holds. Kept only if it converged, stays feasible and costs at most 1e-6 more.
+GaitParameters polish(GaitEvaluationCache& cache, const GaitParameters& p,
+                      const OptimizationRequest& req, double scale, std::ostream* log,
+                      OptimizationResult& r) {
+  const GaitEvaluator& ev = cache.evaluator();
+  const double before = criterionValue(cache.values(p), req.criterion);
+  const NlpSolution sol = solveStage(cache, p, 5, kInterior, kInterior, req.solver, "polish", log,
+                                     r, [&](NlpProblem& problem) {
+                                       problem.addCost(makeCriterionCost(cache, req.criterion, scale));
+                                       if (req.speed)
+                                         problem.addConstraints(makeSpeedConstraint(cache, *req.speed));
+                                     });
+  const GaitEvaluation<double>& e = cache.values(sol.x);
+  const bool better = sol.status == NlpStatus::Solved && meetsAll(ev, req, e) &&
+                      criterionValue(e, req.criterion) <= before * (1.0 + 1e-6);
+  return better ? GaitParameters(sol.x) : p;
+}
+
+void classify(const GaitEvaluator& ev, const OptimizationRequest& req, NlpStatus solver_status,
+              OptimizationResult& r) {
+  const GaitEvaluation<double>& e = r.evaluation;
+  const ConstraintLayout& layout = ev.layout();
+  r.constraint_violation = 0.0;
+  for (int k = 0; k < layout.size(); ++k)
+    if (e.state[k] != ConstraintState::NotComputed) r.constraint_violation = std::max(r.constraint_violation, e.g[k]);
+  const bool speed_unmet = req.speed && std::abs(e.speed - *req.speed) > kFeasibilityTol;
+  if (req.speed) r.constraint_violation = std::max(r.constraint_violation, std::abs(e.speed - *req.speed));
+  r.unmet_level = lowestViolatedLevel(ev, e, 5);
+  if (speed_unmet && r.unmet_level < 0) r.unmet_level = 5;
+  for (const ConstraintGroup& g : layout.groups())
+    for (int k = 0; k < g.count; ++k)
+      if (g.level == r.unmet_level && e.state[g.offset + k] != ConstraintState::NotComputed &&
+          scaledValue(ev, e, g.offset + k) > kFeasibilityTol) {
+        r.unmet_constraints.push_back(g.name);
+        break;
+      }
+  if (speed_unmet && r.unmet_level == 5) r.unmet_constraints.push_back("speed");
+  // The final point decides first: an unmet constraint is "infeasible" whatever the solver
+  // says; a feasible point is "optimal" only if the solver also converged.
+  const bool feasible = r.unmet_level < 0 && e.motion_computed;
+  if (!feasible) r.status = "infeasible";
+  else if (solver_status == NlpStatus::Solved) r.status = "optimal";
+  else if (solver_status == NlpStatus::MaxIterations) r.status = "max_iter";
+  else r.status = "failed";
+}
+
+}  // namespace
+
+const char* backendName(Backend b) {
+  return b == Backend::Ipopt ? "ipopt" : b == Backend::NloptSlsqp ? "nlopt_slsqp" : "nlopt_cobyla";
+}
+
+const char* strategyName(HierarchyStrategy s) {
+  return s == HierarchyStrategy::Staged ? "staged" : "direct";
+}
+
+namespace {
+
+// Staged strategy: project onto levels 0–1, then 0–4, as long as the evaluator finds a failed
+// level below 5 (a projection that stalls is restarted from its own point).
+GaitParameters repairLowerLevels(GaitEvaluationCache& cache, GaitParameters p,
+                                 const OptimizationRequest& req, std::ostream* log,
+                                 OptimizationResult& r) {
+  for (int pass = 0; pass < 2 * (req.solver.max_restarts + 1); ++pass) {
+    const int failed = cache.values(p).failed_level;
+    if (failed < 0 || failed > 4) break;
+    const int target = failed <= 1 ? 1 : 4;
+    p = project(cache, p, target, req.solver, "levels 0-" + std::to_string(target), log, r);
+  }
+  return p;
+}
+
+// The full problem from a computable point, with restarts and the final polish.
+GaitParameters solveFullProblem(GaitEvaluationCache& cache, GaitParameters p,
+                                const OptimizationRequest& req, std::ostream* log,
+                                OptimizationResult& r, NlpStatus& status) {
+  const GaitEvaluator& ev = cache.evaluator();
+  // Objective of order one at the start, so the solver's tolerances are relative.
+  const double scale = std::max(1.0, std::abs(criterionValue(cache.values(p), req.criterion)));
+  // A quasi-Newton model built across the kinks of the semi-infinite constraints can stall
+  // the solver slightly infeasible; a restart from its point rebuilds the model.
+  SolverSettings settings = req.solver;
+  for (int attempt = 0; attempt <= req.solver.max_restarts; ++attempt) {
+    const std::string label = attempt == 0 ? "full" : "full restart " + std::to_string(attempt);
+    const NlpSolution sol =
+        solveStage(cache, p, 5, kInterior, 0.0, settings, label, log, r, [&](NlpProblem& problem) {
+          problem.addCost(makeCriterionCost(cache, req.criterion, scale));
+          if (req.speed) problem.addConstraints(makeSpeedConstraint(cache, *req.speed));
+        });
+    // An NLopt run that broke down on undefined trial points restarts with Ipopt, which
+    // refuses them natively (with the exchange method, measured faster for Ipopt).
+    if (sol.status == NlpStatus::Failed && settings.backend != Backend::Ipopt) {
+      settings.backend = Backend::Ipopt;
+      settings.constraint_exchange = true;
+    }
+    if (!cache.values(sol.x).motion_computed) continue;  // restart from the last point
+    status = sol.status;
+    p = sol.x;
+    if (status == NlpStatus::Solved && meetsAll(ev, req, cache.values(p))) break;
+  }
+  return status == NlpStatus::Solved ? polish(cache, p, req, scale, log, r) : p;
+}
+
+}  // namespace
+
+OptimizationResult optimizeGait(const GaitEvaluator& ev, const OptimizationRequest& req,
+                                std::ostream* log) {
+  const auto t0 = std::chrono::steady_clock::now();
+  OptimizationResult r;
+  GaitEvaluationCache cache(ev, req.solver.gradients);
+  GaitParameters p = gaitVariables(ev.model(), req.initial, ev.options().parameterisation).initial;
+  if (req.solver.hierarchy == HierarchyStrategy::Staged) p = repairLowerLevels(cache, p, req, log, r);
+  NlpStatus status = NlpStatus::Failed;
+  if (cache.values(p).motion_computed) p = solveFullProblem(cache, p, req, log, r, status);
+  r.parameters = p;
+  r.evaluation = ev.evaluate(p);
+  classify(ev, req, status, r);
+  r.function_evaluations = cache.valueEvaluations();
+  r.gradient_evaluations = cache.gradientEvaluations();
+  r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace gaitopt

@@ -1,0 +1,623 @@
+// Optimiser configuration files (loadOptimizeConfig), random starts, optimizeGait on the default
+// robot (feasibility, speed, improvement, a local-optimality check), the hierarchy strategies,
+// an infeasible request, and `gaitopt optimize` end to end (outputs, exit codes, the written
+// gait read back by `gaitopt evaluate`, seeded random starts).
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <random>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gaitopt/io/config_error.hpp"
+#include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/opt/optimizer.hpp"
+#include "gaitopt/opt/gait_problem.hpp"
+#include "gaitopt/io/gait_file.hpp"
+#include "gaitopt/opt/initial_guess.hpp"
+#include "gaitopt/io/optimize_config.hpp"
+#include "gaitopt/opt/random_start.hpp"
+#include "gaitopt/io/robot_file.hpp"
+#include "test_files.hpp"
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+using gaitopt::GaitEvaluation;
+using gaitopt::GaitEvaluator;
+using gaitopt::GaitParameters;
+using gaitopt::OptimizationResult;
+using gaitopt::OptimizeConfig;
+using gaitopt::test::CliRun;
+using gaitopt::test::quoted;
+using gaitopt::test::readFile;
+using gaitopt::test::runCli;
+using gaitopt::test::sourcePath;
+
+namespace {
+
+const std::string kDefaultConfig = sourcePath("configs/default.yaml");
+const std::string kRobot = sourcePath("configs/robot/rabbit_miossec.yaml");
+
+// Scratch directory for configuration files and command outputs, removed at exit.
+gaitopt::test::ScratchDir& scratch() {
+  static gaitopt::test::ScratchDir dir("optimize", "config");
+  return dir;
+}
+
+// A valid configuration; the numbers on the right are the 1-based lines the error tests assert.
+std::vector<std::string> validConfig() {
+  return {
+      "# written by test_optimize.cpp",       // 1
+      "robot: " + kRobot,                     // 2
+      "options:",                             // 3
+      "  ss_nodes: 32",                       // 4
+      "criterion: C_Gamma",                   // 5
+      "speed: 0.5",                           // 6
+      "parameterisation: miossec",            // 7
+      "initial_guess: default",               // 8
+      "solver:",                              // 9
+      "  backend: nlopt_slsqp",               // 10
+      "  hierarchy: staged",                  // 11
+      "  max_iter: 500",                      // 12
+      "  tol: 1.0e-8",                        // 13
+      "  constraint_exchange: false",         // 14
+      "  print_every: 0",                     // 15
+      "  ipopt:",                             // 16
+      "    limited_memory_max_history: 30",   // 17
+      "    mu_strategy: adaptive",            // 18
+  };
+}
+
+// The valid configuration with some lines (1-based) replaced; "#" blanks a line.
+std::string configWith(const std::map<int, std::string>& replaced = {}) {
+  return gaitopt::test::withLines(validConfig(), replaced);
+}
+
+// Loading `yaml` must throw a ConfigError for `key` at `line`, with the standard message.
+void requireError(const std::string& yaml, const std::string& key, int line,
+                  const std::string& problem = "") {
+  gaitopt::test::requireConfigError(gaitopt::loadOptimizeConfig, scratch().write(yaml), key,
+                                    line, problem);
+}
+
+// First number written as `"key": <number>` in a JSON text (keys whose first occurrence holds
+// a string or null are skipped to the next occurrence).
+std::optional<double> jsonNumber(const std::string& json, const std::string& key) {
+  const std::string pattern = "\"" + key + "\": ";
+  for (std::size_t at = json.find(pattern); at != std::string::npos;
+       at = json.find(pattern, at + 1)) {
+    const char* begin = json.c_str() + at + pattern.size();
+    char* end = nullptr;
+    const double v = std::strtod(begin, &end);
+    if (end != begin) return v;
+  }
+  return std::nullopt;
+}
+
+// The JSON text of the member `"key": {...}` (balanced braces; no braces inside strings).
+std::string jsonObject(const std::string& json, const std::string& key) {
+  const std::size_t at = json.find("\"" + key + "\": {");
+  if (at == std::string::npos) return "";
+  const std::size_t open = json.find('{', at);
+  int depth = 0;
+  for (std::size_t i = open; i < json.size(); ++i) {
+    depth += json[i] == '{' ? 1 : json[i] == '}' ? -1 : 0;
+    if (depth == 0) return json.substr(at, i + 1 - at);
+  }
+  return "";
+}
+
+std::string withoutWallTimes(const std::string& text) {
+  std::istringstream in(text);
+  std::string line, kept;
+  while (std::getline(in, line)) {
+    if (line.find("wall_time_s") == std::string::npos) kept += line + "\n";
+  }
+  return kept;
+}
+
+// Scaled feasibility as the optimiser counts it: every entry computed and g ≤ 1e-6 · scale.
+bool scaledFeasible(const GaitEvaluator& ev, const GaitEvaluation<double>& e,
+                    double* worst = nullptr) {
+  bool ok = e.motion_computed;
+  double w = 0.0;
+  for (int k = 0; k < ev.layout().size(); ++k) {
+    if (e.state[k] == gaitopt::ConstraintState::NotComputed) {
+      ok = false;
+      continue;
+    }
+    const double scaled = e.g[k] / gaitopt::constraintScale(ev.layout(), ev.model(), k);
+    w = std::max(w, scaled);
+  }
+  if (worst) *worst = w;
+  return ok && w <= 1e-6;
+}
+
+// The default optimisation, shared by the tests that only read it.
+struct DefaultRun {
+  OptimizeConfig config = gaitopt::loadOptimizeConfig(kDefaultConfig);
+  GaitEvaluator evaluator{config.robot, config.options, config.model_options};
+  GaitParameters start = gaitopt::configuredInitialGuess(config, evaluator.model());
+  OptimizationResult result =
+      gaitopt::optimizeGait(evaluator, gaitopt::optimizationRequest(config, start));
+};
+
+const DefaultRun& defaultRun() {
+  static const DefaultRun run;
+  return run;
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------------
+// Configuration files
+
+TEST_CASE("optimize: the shipped configurations load with their documented values",
+          "[optimize]") {
+  const OptimizeConfig c = gaitopt::loadOptimizeConfig(kDefaultConfig);
+  CHECK(c.path == kDefaultConfig);
+  CHECK(fs::equivalent(c.robot_path, kRobot));
+  CHECK(c.robot.name == "rabbit_miossec");
+  CHECK(c.criterion == gaitopt::Criterion::Torque);
+  REQUIRE(c.speed);
+  CHECK(*c.speed == 0.5);
+  CHECK(c.options.target_speed == 0.5);  // the speed is carried into the gait options
+  CHECK(c.options.ss_nodes == gaitopt::GaitOptions{}.ss_nodes);
+  CHECK(c.options.friction_coefficient == gaitopt::GaitOptions{}.friction_coefficient);
+  CHECK(c.parameterisation == "miossec");
+  CHECK_FALSE(c.initial_guess_path);
+  CHECK(c.solver.backend == gaitopt::Backend::NloptSlsqp);
+  CHECK(c.solver.hierarchy == gaitopt::HierarchyStrategy::Staged);
+  CHECK(c.solver.max_iter == 500);
+  CHECK(c.solver.tol == 1e-8);
+  CHECK_FALSE(c.solver.constraint_exchange);  // see the comment in configs/default.yaml
+  CHECK(c.solver.print_every == 1);
+  CHECK(c.solver.ipopt_options.empty());
+  const GaitEvaluator ev(c.robot, c.options, c.model_options);
+  CHECK(gaitopt::configuredInitialGuess(c, ev.model()) ==
+        gaitopt::defaultInitialGuess(ev.model(), 0.5));
+
+  const OptimizeConfig ipopt = gaitopt::loadOptimizeConfig(sourcePath("configs/default_ipopt.yaml"));
+  CHECK(ipopt.solver.backend == gaitopt::Backend::Ipopt);
+  CHECK(ipopt.solver.constraint_exchange);
+  using Options = std::vector<std::pair<std::string, std::string>>;
+  CHECK(ipopt.solver.ipopt_options == Options{{"limited_memory_max_history", "30"}});
+
+  const OptimizeConfig chesse = gaitopt::loadOptimizeConfig(sourcePath("configs/chesse_0.85.yaml"));
+  CHECK(chesse.robot.name == "rabbit_chesse");
+  CHECK(*chesse.speed == 0.85);
+  const OptimizeConfig ca =
+      gaitopt::loadOptimizeConfig(sourcePath("configs/chevallereau_aoustin_0.75.yaml"));
+  CHECK(ca.robot.name == "rabbit_chevallereau_aoustin");
+  CHECK(*ca.speed == 0.75);
+
+  // The richer Chesse run starts from the shipped Ipopt optimum, refined exactly: same C_Γ.
+  const OptimizeConfig rich = gaitopt::loadOptimizeConfig(sourcePath("configs/chesse_0.85_rich.yaml"));
+  CHECK(rich.options.parameterisation.ss_points == 3);
+  CHECK(rich.options.parameterisation.ds_points == 1);
+  CHECK(rich.solver.backend == gaitopt::Backend::Ipopt);
+  const GaitEvaluator fine(rich.robot, rich.options, rich.model_options);
+  const gaitopt::GaitFile thesis_step =
+      gaitopt::loadGaitFile(sourcePath("configs/gait/chesse_0.85_ipopt.yaml"));
+  const GaitEvaluator coarse(thesis_step.robot, thesis_step.options, thesis_step.model_options);
+  CHECK(fine.evaluate(gaitopt::configuredInitialGuess(rich, fine.model())).C_Gamma ==
+        Approx(coarse.evaluate(thesis_step.parameters).C_Gamma).epsilon(1e-9));
+  // Its shipped result (see the file's header) meets every constraint to 1e-9, walks within
+  // 1e-5 m/s of 0.85 m/s, and improves on the thesis parameterisation by more than half.
+  const gaitopt::GaitFile rich_step =
+      gaitopt::loadGaitFile(sourcePath("configs/gait/chesse_0.85_rich.yaml"));
+  const GaitEvaluator rich_ev(rich_step.robot, rich_step.options, rich_step.model_options);
+  const auto e = rich_ev.evaluate(rich_step.parameters);
+  CHECK(e.defined());
+  for (std::size_t k = 0; k < e.g.size(); ++k) CHECK(e.g[k] <= 1e-9);
+  CHECK(e.speed == Approx(0.85).margin(1e-5));
+  CHECK(e.C_Gamma < 0.5 * coarse.evaluate(thesis_step.parameters).C_Gamma);
+  CHECK(gaitopt::loadOptimizeConfig(sourcePath("configs/chesse_0.85_ipopt.yaml")).solver.backend ==
+        gaitopt::Backend::Ipopt);
+}
+
+TEST_CASE("optimize: configuration keys, defaults and pass-through Ipopt options",
+          "[optimize]") {
+  const OptimizeConfig c = gaitopt::loadOptimizeConfig(scratch().write(configWith()));
+  using Options = std::vector<std::pair<std::string, std::string>>;
+  CHECK(c.solver.ipopt_options ==
+        Options{{"limited_memory_max_history", "30"}, {"mu_strategy", "adaptive"}});
+  CHECK(c.solver.print_every == 0);
+
+  // Only `robot` is required; everything else takes its default.
+  const OptimizeConfig minimal = gaitopt::loadOptimizeConfig(scratch().write("robot: " + kRobot));
+  CHECK_FALSE(minimal.speed);
+  CHECK(minimal.options.target_speed == 0.0);
+  CHECK(minimal.criterion == gaitopt::Criterion::Torque);
+  CHECK(minimal.parameterisation == "miossec");
+  CHECK(minimal.solver.backend == gaitopt::Backend::NloptSlsqp);
+  CHECK(minimal.solver.max_iter == gaitopt::SolverSettings{}.max_iter);
+  CHECK(minimal.solver.constraint_exchange == gaitopt::SolverSettings{}.constraint_exchange);
+  CHECK(minimal.solver.gradients == gaitopt::GradientMode::Exact);
+  CHECK(minimal.options.parameterisation.isThesis());
+
+  // Finite-difference gradients (for comparison) and a richer parameterisation.
+  const OptimizeConfig fd = gaitopt::loadOptimizeConfig(scratch().write(
+      "robot: " + kRobot + "\nparameterisation: {ss_points: 3, ds_points: 2}\n"
+      "solver: {gradients: finite_difference}"));
+  CHECK(fd.solver.gradients == gaitopt::GradientMode::FiniteDifference);
+  CHECK(fd.options.parameterisation.ss_points == 3);
+  CHECK(fd.options.parameterisation.ds_points == 2);
+  CHECK(fd.parameterisation == "miossec+ss3+ds2");
+  // The default guess is refined into the richer parameterisation with the same motion.
+  const GaitEvaluator fine(fd.robot, fd.options, fd.model_options);
+  const GaitParameters start = gaitopt::configuredInitialGuess(fd, fine.model());
+  REQUIRE(start.size() == 17 + 8 + 4);
+  const GaitEvaluator coarse(fd.robot, gaitopt::GaitOptions{}, fd.model_options);
+  CHECK(fine.evaluate(start).C_Gamma ==
+        Approx(coarse.evaluate(gaitopt::defaultInitialGuess(coarse.model(), std::nullopt)).C_Gamma)
+            .epsilon(1e-9));
+
+  // Other criteria and backends; an initial guess from a gait file (relative to the config).
+  const std::string gait = sourcePath("configs/gait/default_step.yaml");
+  const OptimizeConfig other = gaitopt::loadOptimizeConfig(scratch().write(configWith(
+      {{5, "criterion: W"}, {8, "initial_guess: " + gait}, {10, "  backend: nlopt_cobyla"},
+       {11, "  hierarchy: direct"}})));
+  CHECK(other.criterion == gaitopt::Criterion::Work);
+  CHECK(other.solver.backend == gaitopt::Backend::NloptCobyla);
+  CHECK(other.solver.hierarchy == gaitopt::HierarchyStrategy::Direct);
+  REQUIRE(other.initial_guess_path);
+  CHECK(fs::equivalent(*other.initial_guess_path, gait));
+  CHECK(other.initial_guess_parameters == gaitopt::loadGaitFile(gait).parameters);
+  const GaitEvaluator ev(other.robot, other.options, other.model_options);
+  CHECK(gaitopt::configuredInitialGuess(other, ev.model()) == other.initial_guess_parameters);
+  CHECK(gaitopt::loadOptimizeConfig(scratch().write(configWith({{5, "criterion: C_E"}})))
+            .criterion == gaitopt::Criterion::Energy);
+}
+
+TEST_CASE("optimize: bad configurations name the file, the key and its line", "[optimize]") {
+  requireError(configWith({{7, "speeed: 0.5"}}), "speeed", 7, "unknown key");
+  requireError(configWith({{12, "  max_iters: 500"}}), "solver.max_iters", 12, "unknown key");
+  requireError(configWith({{4, "  ss_nodez: 32"}}), "options.ss_nodez", 4, "unknown key");
+  requireError(configWith({{10, "  backend: snopt"}}), "solver.backend", 10, "'ipopt'");
+  requireError(configWith({{11, "  hierarchy: fsqp"}}), "solver.hierarchy", 11, "'staged'");
+  requireError(configWith({{5, "criterion: C_T"}}), "criterion", 5, "'C_Gamma', 'C_E', 'W'");
+  requireError(configWith({{6, "speed: 0"}}), "speed", 6, "must be > 0");
+  requireError(configWith({{6, "speed: -0.5"}}), "speed", 6, "must be > 0");
+  requireError(configWith({{6, "speed: \"0.5\""}}), "speed", 6, "expected a number");
+  requireError(configWith({{7, "parameterisation: bspline"}}), "parameterisation", 7,
+               "expected 'miossec' or a mapping {ss_points, ds_points}");
+  requireError(configWith({{12, "  max_iter: 0"}}), "solver.max_iter", 12, "integer >= 1");
+  requireError(configWith({{12, "  max_iter: 2.5"}}), "solver.max_iter", 12, "integer >= 1");
+  requireError(configWith({{13, "  tol: 0"}}), "solver.tol", 13, "must be > 0");
+  requireError(configWith({{13, "  tol: -1e-8"}}), "solver.tol", 13, "must be > 0");
+  requireError(configWith({{14, "  constraint_exchange: maybe"}}), "solver.constraint_exchange",
+               14, "true or false");
+  requireError(configWith({{14, "  gradients: numerical"}}), "solver.gradients", 14,
+               "finite_difference");
+  requireError(configWith({{7, "parameterisation: {ss_points: 2}"}}), "parameterisation.ss_points",
+               7, "must be odd");
+  requireError(configWith({{15, "  print_every: -1"}}), "solver.print_every", 15,
+               "integer >= 0");
+  requireError(configWith({{16, "  ipopt: {no_such_option: 1}"}, {17, "#"}, {18, "#"}}),
+               "solver.ipopt.no_such_option", 16, "Ipopt rejects");
+  requireError(configWith({{18, "    no_such_option: 1"}}), "solver.ipopt.no_such_option", 18,
+               "Ipopt rejects");
+  requireError(configWith({{18, "    mu_strategy: sometimes"}}), "solver.ipopt.mu_strategy", 18,
+               "'sometimes'");
+  requireError(configWith({{17, "    limited_memory_max_history: -3"}}),
+               "solver.ipopt.limited_memory_max_history", 17, "Ipopt rejects");
+  requireError(configWith({{17, "    limited_memory_max_history: [30]"}}),
+               "solver.ipopt.limited_memory_max_history", 17, "expected a single value");
+  requireError(configWith({{4, "  target_speed: 0.5"}}), "options.target_speed", 4, "'speed'");
+  requireError(configWith({{4, "  ss_nodes: 1"}}), "options.ss_nodes", 4, "integer");
+  requireError(configWith({{9, "solver: nlopt"}, {10, "#"}, {11, "#"}, {12, "#"}, {13, "#"},
+                           {14, "#"}, {15, "#"}, {16, "#"}, {17, "#"}, {18, "#"}}),
+               "solver", 9, "expected a mapping");
+  requireError(configWith({{2, "robot: " + scratch().fresh("no_robot") + ".yaml"}}), "robot", 2,
+               "does not exist");
+  requireError(configWith({{2, "#"}}), "robot", 3, "required key is missing");
+  requireError(configWith({{8, "initial_guess: no_such_gait.yaml"}}), "initial_guess", 8,
+               "does not exist");
+}
+
+// ------------------------------------------------------------------------------------------
+// Random starts
+
+TEST_CASE("optimize: random starts are seeded, uniform in the documented box", "[optimize]") {
+  const gaitopt::Model model = gaitopt::buildModel(gaitopt::loadRobot(kRobot));
+  const GaitParameters centre = gaitopt::defaultInitialGuess(model, 0.5);
+  const gaitopt::RandomStartBox box = gaitopt::randomStartBox(centre);
+  const GaitParameters h = gaitopt::randomStartHalfWidths();
+  // On the default robot no clipping applies: the box is centre ± half-width.
+  CHECK((box.lower - (centre - h)).cwiseAbs().maxCoeff() == 0.0);
+  CHECK((box.upper - (centre + h)).cwiseAbs().maxCoeff() == 0.0);
+  CHECK(h(gaitopt::kAlphaIDS) == 0.15);
+  CHECK(h(gaitopt::kDelta1Int) == 0.15);
+  CHECK(h(gaitopt::kTheta3FDS) == 0.1);
+  CHECK(h(gaitopt::kZ2Int) == 0.02);
+  CHECK(h(gaitopt::kAlphadotISS) == 0.3);
+  CHECK(h(gaitopt::kDelta2sFSS) == 0.5);
+  CHECK(h(gaitopt::kTDS) == 0.05);
+
+  std::mt19937_64 a(7), b(7), c(8);
+  for (int k = 0; k < 200; ++k) {
+    const GaitParameters p = gaitopt::randomStart(centre, a);
+    CHECK(p == gaitopt::randomStart(centre, b));  // same seed, same sequence
+    CHECK(p != gaitopt::randomStart(centre, c));
+    CHECK((p - box.lower).minCoeff() >= 0.0);
+    CHECK((box.upper - p).minCoeff() >= 0.0);
+  }
+
+  // Parameters that must keep their sign are clipped.
+  GaitParameters edge = centre;
+  edge(gaitopt::kZ2Int) = 0.01;
+  edge(gaitopt::kAlphadotISS) = -0.1;
+  edge(gaitopt::kTDS) = 0.03;
+  const gaitopt::RandomStartBox clipped = gaitopt::randomStartBox(edge);
+  CHECK(clipped.lower(gaitopt::kZ2Int) == 0.005);
+  CHECK(clipped.upper(gaitopt::kAlphadotISS) == -0.05);
+  CHECK(clipped.lower(gaitopt::kTDS) == 0.02);
+  edge(gaitopt::kAlphadotISS) = 0.5;  // a centre beyond the limit: the interval is the limit
+  const gaitopt::RandomStartBox degenerate = gaitopt::randomStartBox(edge);
+  CHECK(degenerate.lower(gaitopt::kAlphadotISS) == -0.05);
+  CHECK(degenerate.upper(gaitopt::kAlphadotISS) == -0.05);
+}
+
+// ------------------------------------------------------------------------------------------
+// The optimiser on the default robot
+
+TEST_CASE("optimize: the default request converges to a feasible, much better step",
+          "[optimize]") {
+  const DefaultRun& run = defaultRun();
+  const OptimizationResult& r = run.result;
+  const GaitEvaluator& ev = run.evaluator;
+  INFO("status " << r.status << ", C_Gamma " << r.evaluation.C_Gamma << ", iterations "
+                 << r.iterations << ", wall time " << r.wall_time_s << " s");
+  REQUIRE(r.status == "optimal");
+  CHECK(r.unmet_level == -1);
+  CHECK(r.unmet_constraints.empty());
+  CHECK(r.evaluation.defined());
+  CHECK(r.evaluation.motion_computed);
+  // The returned evaluation is that of the returned parameters.
+  CHECK(ev.evaluate(r.parameters).C_Gamma == r.evaluation.C_Gamma);
+
+  double worst = 0.0;
+  CHECK(scaledFeasible(ev, r.evaluation, &worst));
+  INFO("largest scaled constraint value " << worst);
+  CHECK(worst <= 1e-6);
+  CHECK(std::abs(r.evaluation.speed - 0.5) <= 1e-6);
+
+  const GaitEvaluation<double> start = ev.evaluate(run.start);
+  REQUIRE(start.motion_computed);
+  INFO("C_Gamma at the start " << start.C_Gamma);
+  CHECK(r.evaluation.C_Gamma < 0.5 * start.C_Gamma);
+}
+
+// Local-optimality smoke check. The literal version "perturb each coordinate by ±1e-3 · scale
+// and keep the feasible points" is unsound with the speed EQUALITY (3.50): almost every single
+// coordinate changes the speed by ~1e-4 m/s, so either nearly every perturbation counts as
+// infeasible (a vacuous test) or, ignoring the speed, a perturbation that walks slower may
+// legitimately lower C_Gamma at first order (by the speed multiplier × Δv). Here each
+// perturbed point is brought back onto the speed manifold by Newton steps on T_DS (speed =
+// d/(T_SS + T_DS)), and only points that then satisfy every inequality (scaled, as the
+// optimiser counts them) and the parameter box are compared. At a KKT point, such feasible
+// moves cannot lower the criterion at first order (active constraints have non-negative
+// multipliers), so a decrease beyond 1e-3 relative means the solver stopped short.
+TEST_CASE("optimize: no feasible nearby point on the speed manifold is much better",
+          "[optimize]") {
+  const DefaultRun& run = defaultRun();
+  REQUIRE(run.result.status == "optimal");
+  const GaitEvaluator& ev = run.evaluator;
+  const GaitParameters best = run.result.parameters;
+  const double c_best = run.result.evaluation.C_Gamma;
+  const gaitopt::VariableSet box =
+      gaitopt::gaitVariables(ev.model(), best, ev.options().parameterisation);
+  const GaitParameters scales = gaitopt::parameterScales(ev.options().parameterisation);
+
+  const auto onSpeed = [&](GaitParameters p) -> std::optional<GaitParameters> {
+    for (int iteration = 0; iteration < 10; ++iteration) {
+      const gaitopt::GaitGradient g = ev.evaluateWithGradient(p);
+      if (!g.value.motion_computed || !(std::abs(g.dspeed(gaitopt::kTDS)) > 0.0))
+        return std::nullopt;
+      const double error = g.value.speed - 0.5;
+      if (std::abs(error) <= 1e-12) return p;
+      p(gaitopt::kTDS) -= error / g.dspeed(gaitopt::kTDS);
+    }
+    return std::nullopt;
+  };
+
+  int compared = 0;
+  double largest_decrease = -INFINITY;
+  for (int i = 0; i < gaitopt::kNumGaitParameters; ++i) {
+    if (i == gaitopt::kTDS) continue;  // the coordinate that restores the speed
+    for (double sign : {-1.0, 1.0}) {
+      GaitParameters p = best;
+      p(i) += sign * 1e-3 * scales(i);
+      const std::optional<GaitParameters> q = onSpeed(p);
+      if (!q) continue;
+      if ((*q - box.lower).minCoeff() < 0.0 || (box.upper - *q).minCoeff() < 0.0) continue;
+      const GaitEvaluation<double> e = ev.evaluate(*q);
+      if (!scaledFeasible(ev, e)) continue;
+      ++compared;
+      const double decrease = (c_best - e.C_Gamma) / c_best;
+      largest_decrease = std::max(largest_decrease, decrease);
+      INFO(gaitopt::kGaitParameterNames[i] << (sign > 0 ? " +" : " -") << ": relative decrease "
+                                           << decrease);
+      CHECK(decrease <= 1e-3);
+    }
+  }
+  INFO("feasible perturbations compared: " << compared << ", largest relative decrease "
+                                           << largest_decrease);
+  // Not vacuous. Most perturbations leave the feasible set (active constraints make the
+  // feasible moves one-sided); 7 of the 32 stay feasible on the default optimum (2026-11-21).
+  CHECK(compared >= 4);
+}
+
+// Regression (2026-11-21): projections used to land ON the level-1 boundary (g = +5e-17, a
+// failure for the evaluator) or on a DS with the minimum α range, from which the next stages
+// degraded; they now aim inside the lower levels (kProjectionInterior) and use Ipopt.
+TEST_CASE("optimize: staged repairs a start that violates level 1, direct cannot start",
+          "[optimize]") {
+  const DefaultRun& run = defaultRun();
+  const GaitEvaluator& ev = run.evaluator;
+  // α at DS end ahead of α at DS start: the DS runs backwards, level 1 (alpha_order_DS) fails
+  // and nothing from level 2 on (zero dynamics, criterion) can be computed.
+  GaitParameters start = run.start;
+  start(gaitopt::kAlphaFDS) = start(gaitopt::kAlphaIDS) + 0.05;
+  const GaitEvaluation<double> e0 = ev.evaluate(start);
+  REQUIRE(e0.failed_level == 1);
+  REQUIRE_FALSE(e0.motion_computed);
+
+  gaitopt::OptimizationRequest request = gaitopt::optimizationRequest(run.config, start);
+  request.solver.print_every = 0;
+  request.solver.hierarchy = gaitopt::HierarchyStrategy::Direct;
+  const OptimizationResult direct = gaitopt::optimizeGait(ev, request);
+  INFO("direct: " << direct.status << ", unmet level " << direct.unmet_level);
+  CHECK((direct.status == "failed" || direct.status == "infeasible"));
+  CHECK(direct.unmet_level == 1);
+
+  request.solver.hierarchy = gaitopt::HierarchyStrategy::Staged;
+  const OptimizationResult staged = gaitopt::optimizeGait(ev, request);
+  std::string stages;
+  for (const auto& s : staged.stages)
+    stages += s.name + ": " + gaitopt::nlpStatusName(s.status) + "; ";
+  INFO("staged: " << staged.status << ", unmet level " << staged.unmet_level << ", stages "
+                  << stages);
+  CHECK(staged.status == "optimal");
+  CHECK(scaledFeasible(ev, staged.evaluation));
+  CHECK(std::abs(staged.evaluation.speed - 0.5) <= 1e-6);
+}
+
+TEST_CASE("optimize: an unreachable speed ends infeasible, with the unmet constraints named",
+          "[optimize]") {
+  const DefaultRun& run = defaultRun();
+  const GaitEvaluator& ev = run.evaluator;
+  gaitopt::OptimizationRequest request = gaitopt::optimizationRequest(
+      run.config, gaitopt::defaultInitialGuess(ev.model(), 3.0));
+  request.speed = 3.0;
+  const OptimizationResult r = gaitopt::optimizeGait(ev, request);
+  INFO("status " << r.status << ", unmet level " << r.unmet_level << ", violation "
+                 << r.constraint_violation);
+  CHECK(r.status == "infeasible");
+  CHECK(r.unmet_level >= 0);
+  CHECK_FALSE(r.unmet_constraints.empty());
+  CHECK(r.constraint_violation > 1e-6);
+}
+
+// ------------------------------------------------------------------------------------------
+// gaitopt optimize
+
+TEST_CASE("optimize: the CLI writes the optimum, and evaluate reads it back", "[optimize]") {
+  const std::string out = scratch().fresh("out_default") + "/nested";
+  const CliRun run = runCli("optimize --config " + quoted(kDefaultConfig) + " --out " +
+                            quoted(out) + " --quiet");
+  INFO(run.out << run.err);
+  REQUIRE(run.exit_code == 0);
+  CHECK(run.err.empty());
+  CHECK_THAT(run.out, Contains("optimize: optimal"));
+  CHECK(std::count(run.out.begin(), run.out.end(), '\n') == 1);  // --quiet: result line only
+  REQUIRE(fs::exists(out + "/summary.json"));
+  REQUIRE(fs::exists(out + "/gait.yaml"));
+  REQUIRE(fs::exists(out + "/trajectory.csv"));
+
+  const std::string summary = readFile(out + "/summary.json");
+  CHECK_THAT(summary, Contains("\"status\": \"ok\""));
+  CHECK_THAT(summary, Contains("\"criterion\": \"C_Gamma\""));
+  CHECK_THAT(summary, Contains("\"target_speed\": 0.5"));
+  CHECK_THAT(summary, Contains("\"backend\": \"nlopt_slsqp\""));
+  CHECK_THAT(summary, Contains("\"hierarchy\": \"staged\""));
+  CHECK_THAT(summary, Contains("\"status\": \"optimal\""));
+  CHECK_THAT(summary, Contains("\"unmet_level\": null"));
+  CHECK_THAT(summary, Contains("\"unmet_constraints\": []"));
+  CHECK_THAT(summary, Contains("\"stages\": ["));
+  CHECK(summary.find("random_starts") == std::string::npos);
+  std::string lower = summary;
+  std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
+  CHECK(lower.find("nan") == std::string::npos);
+
+  // The gait file names the robot relative to its own directory.
+  const std::string gait = readFile(out + "/gait.yaml");
+  CHECK(gait.find("robot: /") == std::string::npos);
+  CHECK_THAT(gait, Contains("rabbit_miossec.yaml"));
+
+  const std::string again = scratch().fresh("out_evaluate");
+  const CliRun evaluate =
+      runCli("evaluate --gait " + quoted(out + "/gait.yaml") + " --out " + quoted(again));
+  INFO(evaluate.err);
+  REQUIRE(evaluate.exit_code == 0);
+  const std::string check = readFile(again + "/summary.json");
+  CHECK_THAT(check, Contains("\"status\": \"ok\""));
+  const std::optional<double> c_opt = jsonNumber(summary, "C_Gamma");
+  const std::optional<double> c_eval = jsonNumber(check, "C_Gamma");
+  REQUIRE(c_opt);
+  REQUIRE(c_eval);
+  CHECK(std::abs(*c_eval - *c_opt) <= 1e-9 * std::abs(*c_opt));
+  const std::optional<double> violation = jsonNumber(check, "max_violation");
+  REQUIRE(violation);
+  CHECK(*violation <= 1e-4);
+  const std::optional<double> speed_error = jsonNumber(check, "speed_error");
+  REQUIRE(speed_error);
+  CHECK(std::abs(*speed_error) <= 1e-6);
+}
+
+TEST_CASE("optimize: the CLI rejects bad input without writing anything", "[optimize]") {
+  const std::string out = scratch().fresh("out_bad");
+  const std::string bad = scratch().write(configWith({{10, "  backend: snopt"}}));
+  const CliRun run = runCli("optimize --config " + quoted(bad) + " --out " + quoted(out));
+  CHECK(run.exit_code == 2);
+  CHECK_THAT(run.err, Contains(bad + ":10: key 'solver.backend': "));
+  CHECK_FALSE(fs::exists(out));
+
+  const CliRun zero = runCli("optimize --config " + quoted(kDefaultConfig) + " --out " +
+                             quoted(out) + " --random-starts 0");
+  CHECK(zero.exit_code == 2);
+  const CliRun seed_alone = runCli("optimize --config " + quoted(kDefaultConfig) + " --out " +
+                                   quoted(out) + " --seed 3");
+  CHECK(seed_alone.exit_code == 2);
+  const CliRun missing = runCli("optimize --config " + quoted(out + ".yaml") + " --out " +
+                                quoted(out));
+  CHECK(missing.exit_code == 2);
+  CHECK_FALSE(fs::exists(out));
+}
+
+TEST_CASE("optimize: the CLI reports an infeasible request with exit code 3 and its outputs",
+          "[optimize]") {
+  const std::string config = scratch().write(configWith({{6, "speed: 3.0"}}));
+  const std::string out = scratch().fresh("out_infeasible");
+  const CliRun run = runCli("optimize --config " + quoted(config) + " --out " + quoted(out) +
+                            " --quiet");
+  INFO(run.out << run.err);
+  CHECK(run.exit_code == 3);
+  CHECK_THAT(run.err, Contains("status infeasible") && Contains("unmet level"));
+  REQUIRE(fs::exists(out + "/summary.json"));
+  REQUIRE(fs::exists(out + "/gait.yaml"));
+  const std::string summary = readFile(out + "/summary.json");
+  CHECK_THAT(summary, Contains("\"status\": \"infeasible\""));
+  CHECK_THAT(summary, Contains("\"target_speed\": 3"));
+  CHECK(summary.find("\"unmet_constraints\": []") == std::string::npos);
+  // The written gait is a valid gait file (possibly of an undefined step).
+  CHECK_NOTHROW(gaitopt::loadGaitFile(out + "/gait.yaml"));
+}
+
+TEST_CASE("optimize: random starts are reproducible from their seed", "[optimize]") {
+  std::string blocks[2];
+  for (std::string& block : blocks) {
+    const std::string out = scratch().fresh("out_random");
+    const CliRun run = runCli("optimize --config " + quoted(kDefaultConfig) + " --out " +
+                              quoted(out) + " --random-starts 3 --seed 7 --quiet");
+    INFO(run.out << run.err);
+    REQUIRE((run.exit_code == 0 || run.exit_code == 3));
+    CHECK_THAT(run.out, Contains("converged "));
+    const std::string summary = readFile(out + "/summary.json");
+    block = jsonObject(summary, "random_starts");
+    REQUIRE_FALSE(block.empty());
+    CHECK_THAT(block, Contains("\"count\": 3"));
+    CHECK_THAT(block, Contains("\"seed\": 7"));
+    CHECK_THAT(block, Contains("\"start\": 3"));
+  }
+  CHECK(withoutWallTimes(blocks[0]) == withoutWallTimes(blocks[1]));
+}

@@ -1,0 +1,303 @@
+// Speed sweeps: the --speeds and --shard syntax, contiguous chunks, continuation on the default
+// robot (one chain, two threaded chains, shards), sweep.csv merging, and the `gaitopt sweep` /
+// `gaitopt sweep-merge` commands. Three speeds only, to keep the runtime small.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gaitopt/opt/initial_guess.hpp"
+#include "gaitopt/opt/sweep.hpp"
+#include "test_files.hpp"
+#include "test_gait_support.hpp"
+
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+using gaitopt::OptimizationRequest;
+using gaitopt::parseShard;
+using gaitopt::parseSpeedRange;
+using gaitopt::SweepPoint;
+using gaitopt::SweepSettings;
+using gaitopt::test::CliRun;
+using gaitopt::test::quoted;
+using gaitopt::test::readFile;
+using gaitopt::test::runCli;
+
+namespace {
+
+gaitopt::test::ScratchDir& scratch() {
+  static gaitopt::test::ScratchDir s("sweep");
+  return s;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line))
+    if (!line.empty()) out.push_back(line);
+  return out;
+}
+
+// The speed column of a sweep.csv row.
+double firstField(const std::string& row) { return std::stod(row.substr(0, row.find(','))); }
+
+const gaitopt::GaitEvaluator& evaluator() {
+  static const gaitopt::GaitEvaluator ev = gaitopt::test::defaultGaitEvaluator();
+  return ev;
+}
+
+OptimizationRequest baseRequest() {
+  OptimizationRequest r;
+  r.initial = gaitopt::defaultInitialGuess(evaluator().model(), std::nullopt);
+  r.solver.print_every = 0;
+  return r;
+}
+
+bool sameBits(const gaitopt::GaitParameters& a, const gaitopt::GaitParameters& b) {
+  for (int i = 0; i < gaitopt::kNumGaitParameters; ++i)
+    if (std::memcmp(&a[i], &b[i], sizeof(double)) != 0) return false;
+  return true;
+}
+
+const std::string kConfig = gaitopt::test::sourcePath("configs/default.yaml");
+
+}  // namespace
+
+TEST_CASE("parseSpeedRange: inclusive ranges, rounded values", "[sweep]") {
+  CHECK(parseSpeedRange("0.4:0.6:0.1") == std::vector<double>{0.4, 0.5, 0.6});
+  const std::vector<double> v = parseSpeedRange("0.2:1.0:0.05");
+  REQUIRE(v.size() == 17);
+  CHECK(v.front() == 0.2);
+  CHECK(v[2] == 0.3);
+  CHECK(v.back() == 1.0);
+  CHECK(parseSpeedRange("0.2:1:0.3") == std::vector<double>{0.2, 0.5, 0.8});
+  CHECK(parseSpeedRange("0.5:0.5:0.1") == std::vector<double>{0.5});
+  CHECK(parseSpeedRange("1e-1:3e-1:1e-1") == std::vector<double>{0.1, 0.2, 0.3});
+}
+
+TEST_CASE("parseSpeedRange rejects malformed ranges with a clear message", "[sweep]") {
+  using Catch::Matchers::Contains;
+  CHECK_THROWS_WITH(parseSpeedRange(""), Contains("expected start:stop:step"));
+  CHECK_THROWS_WITH(parseSpeedRange("0.2:1.0"), Contains("expected start:stop:step"));
+  CHECK_THROWS_WITH(parseSpeedRange("0.2:1.0:0.1:2"), Contains("expected start:stop:step"));
+  CHECK_THROWS_WITH(parseSpeedRange("a:1.0:0.1"), Contains("start 'a' is not a finite number"));
+  CHECK_THROWS_WITH(parseSpeedRange("0.2:1.0x:0.1"), Contains("stop '1.0x'"));
+  CHECK_THROWS_WITH(parseSpeedRange("0.2::0.1"), Contains("stop ''"));
+  CHECK_THROWS_WITH(parseSpeedRange("0.2:inf:0.1"), Contains("not a finite number"));
+  CHECK_THROWS_WITH(parseSpeedRange("0:1:0.1"), Contains("start must be > 0"));
+  CHECK_THROWS_WITH(parseSpeedRange("-0.2:1:0.1"), Contains("start must be > 0"));
+  CHECK_THROWS_WITH(parseSpeedRange("1.0:0.2:0.1"), Contains("stop must be >= start"));
+  CHECK_THROWS_WITH(parseSpeedRange("0.2:1:0"), Contains("step must be > 0"));
+  CHECK_THROWS_WITH(parseSpeedRange("0.2:1:-0.1"), Contains("step must be > 0"));
+  CHECK_THROWS_WITH(parseSpeedRange("0.1:100:0.001"), Contains("more than 10000 speeds"));
+  CHECK_THROWS_AS(parseSpeedRange("x"), std::invalid_argument);
+}
+
+TEST_CASE("parseShard and splitContiguous", "[sweep]") {
+  CHECK(parseShard("0/2").index == 0);
+  CHECK(parseShard("1/2").index == 1);
+  CHECK(parseShard("1/2").count == 2);
+  CHECK_THROWS_WITH(parseShard("2/2"), Contains("index must be < n"));
+  CHECK_THROWS_WITH(parseShard("0/0"), Contains("n must be >= 1"));
+  CHECK_THROWS_WITH(parseShard("-1/2"), Contains("not a non-negative integer"));
+  CHECK_THROWS_WITH(parseShard("1"), Contains("expected i/n"));
+  CHECK_THROWS_WITH(parseShard("a/2"), Contains("not a non-negative integer"));
+
+  const std::vector<double> s = parseSpeedRange("0.2:1.0:0.1");
+  const auto chunks = gaitopt::splitContiguous(s, 2);
+  REQUIRE(chunks.size() == 2);
+  CHECK(chunks[0] == std::vector<double>{0.2, 0.3, 0.4, 0.5});
+  CHECK(chunks[1] == std::vector<double>{0.6, 0.7, 0.8, 0.9, 1.0});
+  std::vector<double> joined;
+  for (const auto& c : gaitopt::splitContiguous(s, 4)) {
+    CHECK(c.size() >= 2);
+    joined.insert(joined.end(), c.begin(), c.end());
+  }
+  CHECK(joined == s);
+  CHECK_THROWS_WITH(gaitopt::splitContiguous(s, 10), Contains("need 1 <= chunks <= speeds"));
+  CHECK_THROWS_WITH(gaitopt::sortedSpeeds({0.5, 0.4, 0.5}), Contains("appears twice"));
+  CHECK(gaitopt::sortedSpeeds({0.6, 0.4}) == std::vector<double>{0.4, 0.6});
+}
+
+TEST_CASE("sweepSpeeds on the default robot: one chain", "[sweep]") {
+  const std::vector<double> speeds = parseSpeedRange("0.4:0.6:0.1");
+  std::vector<int> done;
+  int free_reports = 0;
+  const std::vector<SweepPoint> r = gaitopt::sweepSpeeds(
+      evaluator(), baseRequest(), speeds, SweepSettings{}, [&](const gaitopt::SweepProgress& p) {
+        if (p.free_speed) {
+          ++free_reports;
+          CHECK(p.point.result.status == "optimal");
+        } else {
+          done.push_back(p.done);
+          CHECK(p.total == 3);
+        }
+      });
+  CHECK(free_reports == 1);
+  CHECK(done == std::vector<int>{1, 2, 3});
+  REQUIRE(r.size() == 3);
+  int cold = 0;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    INFO("speed " << r[i].speed);
+    CHECK(r[i].speed == speeds[i]);
+    CHECK(r[i].result.status == "optimal");
+    CHECK(std::abs(r[i].result.evaluation.speed - speeds[i]) <= 1e-6);
+    CHECK(r[i].attempts >= 1);
+    if (!r[i].warm_started) ++cold;
+  }
+  // The free-speed optimum is slower than 0.4 m/s: the chain starts there and walks up.
+  CHECK(cold == 1);
+  CHECK_FALSE(r[0].warm_started);
+  CHECK(r[1].warm_started);
+  CHECK(r[1].from_speed == 0.4);
+  CHECK(r[2].warm_started);
+  CHECK(r[2].from_speed == 0.5);
+}
+
+TEST_CASE("sweepSpeeds: two threaded chains are deterministic and equal the two shards",
+          "[sweep]") {
+  const std::vector<double> speeds = parseSpeedRange("0.4:0.6:0.1");
+  SweepSettings two;
+  two.jobs = 2;
+  const std::vector<SweepPoint> a = gaitopt::sweepSpeeds(evaluator(), baseRequest(), speeds, two);
+  const std::vector<SweepPoint> b = gaitopt::sweepSpeeds(evaluator(), baseRequest(), speeds, two);
+  REQUIRE(a.size() == 3);
+  REQUIRE(b.size() == 3);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    INFO("speed " << a[i].speed);
+    CHECK(a[i].speed == speeds[i]);
+    CHECK(a[i].result.status == "optimal");
+    CHECK(std::abs(a[i].result.evaluation.speed - speeds[i]) <= 1e-6);
+    CHECK(sameBits(a[i].result.parameters, b[i].result.parameters));
+    CHECK(a[i].result.evaluation.C_Gamma == b[i].result.evaluation.C_Gamma);
+    CHECK(a[i].attempts == b[i].attempts);
+    CHECK(a[i].total_iterations == b[i].total_iterations);
+  }
+
+  // Shards 0/2 and 1/2 (0-based) cover the list exactly once, and each equals its chain.
+  std::vector<SweepPoint> shards;
+  for (int i = 0; i < 2; ++i) {
+    SweepSettings s;
+    s.sharded = true;
+    s.shard = {i, 2};
+    const auto part = gaitopt::sweepSpeeds(evaluator(), baseRequest(), speeds, s);
+    shards.insert(shards.end(), part.begin(), part.end());
+  }
+  REQUIRE(shards.size() == speeds.size());
+  for (std::size_t i = 0; i < shards.size(); ++i) {
+    INFO("speed " << speeds[i]);
+    CHECK(shards[i].speed == speeds[i]);
+    CHECK(sameBits(shards[i].result.parameters, a[i].result.parameters));
+  }
+  CHECK(gaitopt::sweepRunSpeeds(speeds, [] {
+          SweepSettings s;
+          s.sharded = true;
+          s.shard = {0, 2};
+          return s;
+        }()) == std::vector<double>{0.4});
+  SweepSettings too_many;
+  too_many.sharded = true;
+  too_many.shard = {0, 4};
+  CHECK_THROWS_WITH(gaitopt::sweepRunSpeeds(speeds, too_many),
+                    Contains("exceeds the number of speeds"));
+}
+
+TEST_CASE("mergeSweepCsvs sorts rows and rejects duplicates and foreign headers", "[sweep]") {
+  const std::string h = std::string(gaitopt::kSweepCsvHeader) + "\n";
+  const std::string a = h + "0.5,optimal,1,2,3,4,0.3,0.5,0.04,10,0.1\n";
+  const std::string b = h + "0.40000000000000002,optimal,1,2,3,4,0.3,0.5,0.04,10,0.1\n" +
+                        "0.6,infeasible,,,,,0.3,,0.04,10,0.1\n";
+  const std::vector<std::string> merged = lines(gaitopt::mergeSweepCsvs({a, b}, {"a", "b"}));
+  REQUIRE(merged.size() == 4);
+  CHECK(merged[0] == gaitopt::kSweepCsvHeader);
+  CHECK(firstField(merged[1]) == 0.4);
+  CHECK(firstField(merged[2]) == 0.5);
+  CHECK(firstField(merged[3]) == 0.6);
+  CHECK_THROWS_WITH(gaitopt::mergeSweepCsvs({a, a}, {"a", "a2"}), Contains("appears twice"));
+  CHECK_THROWS_WITH(gaitopt::mergeSweepCsvs({a, "speed,status\n"}, {"a", "x"}),
+                    Contains("x: header"));
+  CHECK_THROWS_WITH(gaitopt::mergeSweepCsvs({h + "0.5,optimal\n"}, {"y"}), Contains("y:2"));
+  CHECK(gaitopt::sweepFolderName(0.5, 3) == "v0.500");
+  CHECK(gaitopt::sweepFolderDecimals({0.4, 0.5}) == 3);
+  CHECK(gaitopt::sweepFolderDecimals({0.5, 0.5001}) == 4);
+}
+
+TEST_CASE("gaitopt sweep and sweep-merge: outputs, shards, exit codes", "[sweep]") {
+  REQUIRE(fs::exists(kConfig));
+  const std::string cfg = quoted(kConfig);
+
+  SECTION("one run writes sweep.csv and one folder per speed") {
+    const std::string out = scratch().fresh("sweep");
+    const CliRun r =
+        runCli("sweep --config " + cfg + " --speeds 0.4:0.6:0.1 --out " + quoted(out));
+    INFO(r.out << r.err);
+    CHECK(r.exit_code == 0);
+    CHECK_THAT(r.out, Contains("[3/3] v="));
+    const std::vector<std::string> csv = lines(readFile(out + "/sweep.csv"));
+    REQUIRE(csv.size() == 4);
+    CHECK(csv[0] ==
+          "speed,status,C_Gamma,C_E,W,C_frott,step_length,T_SS,T_DS,iterations,wall_time_s");
+    for (std::size_t i = 1; i < csv.size(); ++i) CHECK_THAT(csv[i], Contains(",optimal,"));
+    for (const char* v : {"v0.400", "v0.500", "v0.600"})
+      for (const char* f : {"summary.json", "gait.yaml", "trajectory.csv"}) {
+        INFO(v << "/" << f);
+        CHECK(fs::exists(fs::path(out) / v / f));
+      }
+  }
+
+  SECTION("two shards merge into the full list") {
+    const std::string a = scratch().fresh("shard0"), b = scratch().fresh("shard1");
+    const std::string merged = scratch().fresh("merged");
+    const CliRun r0 = runCli("sweep --config " + cfg +
+                             " --speeds 0.4:0.6:0.1 --shard 0/2 --quiet --out " + quoted(a));
+    const CliRun r1 = runCli("sweep --config " + cfg +
+                             " --speeds 0.4:0.6:0.1 --shard 1/2 --quiet --out " + quoted(b));
+    INFO(r0.out << r0.err << r1.out << r1.err);
+    CHECK(r0.exit_code == 0);
+    CHECK(r1.exit_code == 0);
+    CHECK(lines(readFile(a + "/sweep.csv")).size() == 2);
+    CHECK(lines(readFile(b + "/sweep.csv")).size() == 3);
+    const CliRun m =
+        runCli("sweep-merge --out " + quoted(merged) + " " + quoted(b) + " " + quoted(a));
+    INFO(m.out << m.err);
+    CHECK(m.exit_code == 0);
+    const std::vector<std::string> csv = lines(readFile(merged + "/sweep.csv"));
+    REQUIRE(csv.size() == 4);
+    CHECK(csv[0] == gaitopt::kSweepCsvHeader);
+    CHECK(firstField(csv[1]) == 0.4);
+    CHECK(firstField(csv[2]) == 0.5);
+    CHECK(firstField(csv[3]) == 0.6);
+
+    const std::string dup = scratch().fresh("dup");
+    const CliRun d =
+        runCli("sweep-merge --out " + quoted(dup) + " " + quoted(a) + " " + quoted(a));
+    CHECK(d.exit_code == 2);
+    CHECK_THAT(d.err, Contains("appears twice"));
+    CHECK_FALSE(fs::exists(dup));
+  }
+
+  SECTION("bad input exits 2 and writes nothing") {
+    for (const std::string bad :
+         {"--speeds 0.6:0.4:0.1", "--speeds 0.4:0.6", "--speeds a:b:c",
+          "--speeds 0.4:0.6:0.1 --shard 3/2", "--speeds 0.4:0.6:0.1 --shard 0/4",
+          "--speeds 0.4:0.6:0.1 --jobs 0"}) {
+      const std::string out = scratch().fresh("bad");
+      const CliRun r = runCli("sweep --config " + cfg + " " + bad + " --out " + quoted(out));
+      INFO(bad << ": " << r.err);
+      CHECK(r.exit_code == 2);
+      CHECK_FALSE(r.err.empty());
+      CHECK_FALSE(fs::exists(out));
+    }
+    const std::string out = scratch().fresh("bad_config");
+    const CliRun r =
+        runCli("sweep --config " + quoted(out + ".yaml") + " --speeds 0.4:0.6:0.1 --out " +
+               quoted(out));
+    CHECK(r.exit_code == 2);
+    CHECK_FALSE(fs::exists(out));
+  }
+}
