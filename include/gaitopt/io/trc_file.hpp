@@ -1,0 +1,32 @@
+#pragma once
+// Strict reader of motion-capture marker files in the .trc text format (as written by
+// Cortex/OpenSim): line 1 `PathFileType ...`, line 2 the names and line 3 the values of
+// DataRate, CameraRate, NumFrames, NumMarkers, Units, ...; line 4 `Frame#`, `Time` and the
+// marker names (each followed by two empty fields); line 5 the X/Y/Z labels; then one row per
+// frame: frame number, time, X Y Z of every marker. Tab-separated.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace gaitopt {
+
+struct TrcData {
+  std::string file;
+  double rate = 0.0;                 // DataRate [Hz]
+  std::vector<std::string> markers;  // names, in file order
+  Eigen::VectorXd time;              // [s]
+  Eigen::MatrixXd positions;         // frames × 3·markers, [m] (converted from Units)
+
+  // frames × 3 positions (lab X, Y, Z) of marker `name`; ConfigError (file, name) when absent.
+  Eigen::MatrixX3d marker(const std::string& name) const;
+};
+
+// Throws ConfigError naming the file, the column and the line for: a missing or malformed
+// header (wrong first word, header names/values that do not pair up, NumMarkers or
+// NumFrames not matching the table, Units other than mm/m), a row with the wrong number of
+// fields, an empty (occluded) or non-numeric value, a non-increasing time, a frame count
+// different from NumFrames (truncated file). Gaps are not filled: a marker file with
+// occlusions must be gap-filled first. Limits: see tab_text.hpp.
+TrcData readTrcFile(const std::string& path);
+
+}  // namespace gaitopt

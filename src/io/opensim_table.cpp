@@ -1,0 +1,147 @@
+#include "gaitopt/io/opensim_table.hpp"
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <set>
+
+#include "gaitopt/io/config_error.hpp"
+#include "gaitopt/io/tab_text.hpp"
+
+namespace gaitopt {
+
+namespace {
+
+struct HeaderEntry {
+  std::string value;
+  int line;
+};
+
+struct Header {
+  std::map<std::string, HeaderEntry> entries;  // key=value lines
+  int end_line = 0;                            // 1-based line of `endheader`
+};
+
+Header readHeader(const std::vector<std::string>& lines, const std::string& file) {
+  Header header;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string line = trimBlanks(lines[i]);
+    if (line == "endheader") {
+      header.end_line = static_cast<int>(i) + 1;
+      return header;
+    }
+    const auto eq = line.find('=');
+    if (eq != std::string::npos) {
+      header.entries[trimBlanks(line.substr(0, eq))] = {trimBlanks(line.substr(eq + 1)),
+                                                        static_cast<int>(i) + 1};
+    }
+  }
+  throw ConfigError(file, "", static_cast<int>(lines.size()),
+                    "no 'endheader' line: not an OpenSim .mot/.sto file, or truncated header");
+}
+
+bool inDegreesFlag(const Header& header, const std::string& file) {
+  const auto it = header.entries.find("inDegrees");
+  if (it == header.entries.end()) {
+    throw ConfigError(file, "inDegrees", header.end_line,
+                      "missing from the header: say inDegrees=yes or inDegrees=no");
+  }
+  if (it->second.value != "yes" && it->second.value != "no") {
+    throw ConfigError(file, "inDegrees", it->second.line,
+                      "must be 'yes' or 'no', got '" + it->second.value + "'");
+  }
+  return it->second.value == "yes";
+}
+
+// The header's count under `key`, if it gives one.
+std::optional<long> headerCount(const Header& header, const std::string& key,
+                                const std::string& file) {
+  const auto it = header.entries.find(key);
+  if (it == header.entries.end()) return std::nullopt;
+  const double v = parseTableNumber(it->second.value, file, key, it->second.line);
+  if (v < 0 || v != static_cast<double>(static_cast<long>(v))) {
+    throw ConfigError(file, key, it->second.line, "must be a non-negative integer");
+  }
+  return static_cast<long>(v);
+}
+
+std::vector<std::string> columnNames(const std::vector<std::string>& fields,
+                                     const std::string& file, int line) {
+  if (fields.empty() || fields[0] != "time") {
+    throw ConfigError(file, fields.empty() ? "" : fields[0], line,
+                      "the column-name row must start with 'time'");
+  }
+  std::set<std::string> seen;
+  for (const std::string& name : fields) {
+    if (name.empty()) throw ConfigError(file, "", line, "empty column name");
+    if (!seen.insert(name).second) throw ConfigError(file, name, line, "duplicate column name");
+  }
+  return fields;
+}
+
+}  // namespace
+
+bool OpenSimTable::hasColumn(const std::string& name) const {
+  return std::find(columns.begin(), columns.end(), name) != columns.end();
+}
+
+Eigen::VectorXd OpenSimTable::column(const std::string& name) const {
+  const auto it = std::find(columns.begin(), columns.end(), name);
+  if (it == columns.end()) throw ConfigError(file, name, 0, "column missing from the table");
+  return values.col(it - columns.begin());
+}
+
+OpenSimTable readOpenSimTable(const std::string& path) {
+  const std::vector<std::string> lines = readTableLines(path);
+  const Header header = readHeader(lines, path);
+  OpenSimTable table;
+  table.file = path;
+  table.in_degrees = inDegreesFlag(header, path);
+  std::size_t i = static_cast<std::size_t>(header.end_line);
+  while (i < lines.size() && trimBlanks(lines[i]).empty()) ++i;
+  if (i == lines.size()) throw ConfigError(path, "", static_cast<int>(i), "no column-name row");
+  table.columns = columnNames(splitTabFields(lines[i], path, int(i) + 1), path, int(i) + 1);
+  if (const auto n = headerCount(header, "nColumns", path);
+      n && *n != static_cast<long>(table.columns.size())) {
+    throw ConfigError(path, "nColumns", header.entries.at("nColumns").line,
+                      "header says " + std::to_string(*n) + " columns, the name row has " +
+                          std::to_string(table.columns.size()));
+  }
+  std::vector<double> data;
+  table.first_data_line = static_cast<int>(i) + 2;
+  std::size_t n_rows = 0;
+  int last_line = static_cast<int>(i) + 1;
+  for (++i; i < lines.size(); ++i) {
+    const int line = static_cast<int>(i) + 1;
+    if (trimBlanks(lines[i]).empty()) continue;
+    if (last_line != line - 1) throw ConfigError(path, "", line - 1, "blank line inside the data");
+    last_line = line;
+    const std::vector<std::string> fields = splitTabFields(lines[i], path, line);
+    if (fields.size() != table.columns.size()) {
+      throw ConfigError(path, "", line,
+                        "row has " + std::to_string(fields.size()) + " fields, expected " +
+                            std::to_string(table.columns.size()) + " (one per column)");
+    }
+    for (std::size_t c = 0; c < fields.size(); ++c) {
+      data.push_back(parseTableNumber(fields[c], path, table.columns[c], line));
+    }
+    const std::size_t at = data.size() - fields.size();
+    if (n_rows > 0 && !(data[at] > data[at - fields.size()])) {
+      throw ConfigError(path, "time", line, "time does not increase strictly");
+    }
+    ++n_rows;
+  }
+  if (const auto n = headerCount(header, "nRows", path); n && *n != static_cast<long>(n_rows)) {
+    throw ConfigError(path, "", last_line,
+                      "the file has " + std::to_string(n_rows) + " data rows but its header says nRows=" +
+                          std::to_string(*n) + " (truncated or edited file)");
+  }
+  if (n_rows < 2) throw ConfigError(path, "", last_line, "fewer than 2 data rows");
+  table.values = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic,
+                                                Eigen::RowMajor>>(
+      data.data(), static_cast<Eigen::Index>(n_rows),
+      static_cast<Eigen::Index>(table.columns.size()));
+  return table;
+}
+
+}  // namespace gaitopt
