@@ -157,10 +157,13 @@ RobotParams parseRobot(const YAML::Node& root, const std::string& file) {
   robot.s = positiveBodies(doc.map("com_offsets"), "s");
   robot.mass = positiveBodies(doc.map("masses"), "m");
   robot.inertia = positiveBodies(doc.map("inertias"), "I");
-  readMotors(doc.map("motors"), robot);
-  const YamlMap friction = doc.map("friction");
-  robot.coulomb = nonNegativeJoints(friction, "coulomb");
-  robot.viscous = nonNegativeJoints(friction, "viscous");
+  // Without `motors` the joints are driven directly (a person, a direct-drive robot): no rotor
+  // inertia enters (1.17); without `friction` the joints are frictionless (1.21).
+  if (const auto motors = doc.optionalMap("motors")) readMotors(*motors, robot);
+  if (const auto friction = doc.optionalMap("friction")) {
+    robot.coulomb = nonNegativeJoints(*friction, "coulomb");
+    robot.viscous = nonNegativeJoints(*friction, "viscous");
+  }
   if (const auto limits = doc.optionalMap("joint_limits_deg")) {
     robot.limits = readJointLimits(*limits);
   }

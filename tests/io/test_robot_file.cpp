@@ -173,6 +173,23 @@ TEST_CASE("Chesse robot file: Table 1.1 bodies, 20 kg trunk, no rotor, friction 
   CHECK_FALSE(r.bar.present);
 }
 
+TEST_CASE("human five-link file: no motors and no friction sections mean none",
+          "[robot_yaml]") {
+  const RobotParams r = loadRobot(robotFile("human_subject01.yaml"));
+  CHECK(r.mass == std::array<double, 5>{5.094, 8.984, 44.443, 8.984, 5.094});
+  CHECK(r.mass[0] + r.mass[1] + r.mass[2] + r.mass[3] + r.mass[4] == Approx(72.599));
+  CHECK(r.l1 == 0.4251);
+  CHECK(r.l2 == 0.396);
+  CHECK(r.s[2] == Approx(std::hypot(0.3869, 0.0470)).margin(1e-4));
+  CHECK(r.rotor_inertia == std::array<double, 4>{});
+  CHECK(r.coulomb == std::array<double, 4>{});
+  CHECK(r.viscous == std::array<double, 4>{});
+  CHECK(r.gravity == 9.80665);
+  CHECK_FALSE(r.bar.present);
+  // A present motors section must still be complete.
+  requireError(robotWith({{13, "#"}}), "motors.rotor_inertia", 12);
+}
+
 TEST_CASE("CSM 2003 robot file", "[robot_yaml]") {
   const RobotParams r = loadRobot(robotFile("rabbit_csm2003.yaml"));
   CHECK(r.mass == std::array<double, 5>{3.2, 6.8, 12.0, 6.8, 3.2});
