@@ -27,6 +27,10 @@ struct ImportArgs {
 void printSummary(const ImportedTrial& trial) {
   std::cout << "belt speed " << shortNumber(trial.belt_speed, "%.4f") << " m/s ("
             << trial.belt_source << "), trunk line from " << trial.trunk_source << "\n";
+  if (trial.belt_source == "IK ankle") {
+    std::cout << "  note: the IK ankle creeps forward in stance (about 0.1 m/s on the shipped trial);"
+                 " give --trc or --belt-speed for a better estimate\n";
+  }
   for (const GaitEvent& e : trial.events) {
     std::cout << "  " << shortNumber(e.time, "%.4f") << " s  " << sideName(e.side) << ' '
               << (e.heel_strike ? "heel strike" : "toe off") << "\n";
@@ -42,7 +46,9 @@ void printAnalysis(const OpenSimAnalysis& a) {
   }
   std::cout << "single-support alpha-row residual RMS " << shortNumber(a.alpha_residual_rms, "%.2f")
             << " N m, measured CoP moment RMS " << shortNumber(a.cop_moment_rms, "%.2f")
-            << " N m, correlation " << shortNumber(a.alpha_cop_correlation, "%.3f") << "\n";
+            << " N m, correlation " << shortNumber(a.alpha_cop_correlation, "%.3f")
+            << "; left unexplained with the measured CoP " << shortNumber(a.alpha_minus_cop_rms, "%.2f")
+            << " N m, with a rocker foot " << shortNumber(a.alpha_minus_rocker_rms, "%.2f") << " N m\n";
   std::cout << "rocker radius " << shortNumber(a.rocker.radius_all, "%.3f") << " m = "
             << shortNumber(a.rocker.radius_all / a.rocker.leg_length, "%.3f")
             << " x leg length (literature ~0.3); held-out CoP RMS point foot "

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 
 #include "gaitopt/io/json_writer.hpp"
 #include "gaitopt/model/dynamics_floating.hpp"
@@ -145,6 +147,26 @@ std::vector<JointComparison> compareWithReference(const ImportedTrial& trial,
   return out;
 }
 
+// Per step (leg-1 period), the offset c of the rocker CoP c − r α with r the radius fitted on
+// the OTHER leg (held out), and that r: the contact point a rocker foot would have.
+std::map<int, std::pair<double, double>> rockerPlacement(const ImportedTrial& trial,
+                                                         const RockerFootReport& r) {
+  std::map<int, std::pair<double, double>> sum;  // step → (Σ w (cop + r α), Σ w)
+  for (Eigen::Index k = 0; k < trial.t.size(); ++k) {
+    const ImportedLeg& leg = trial.legs[int(trial.leg1[k])];
+    if (!leg.contact[k]) continue;
+    const double radius = trial.leg1[k] == BodySide::Right ? r.radius_left : r.radius_right;
+    const double w = leg.force(k, 1);
+    sum[trial.step[k]].first += w * (leg.cop(k, 0) + radius * leg.shank.v(k));
+    sum[trial.step[k]].second += w;
+  }
+  std::map<int, std::pair<double, double>> out;
+  for (const auto& [step, s] : sum) out[step] = {s.first / s.second, 0.0};
+  for (Eigen::Index k = 0; k < trial.t.size(); ++k)
+    out[trial.step[k]].second = trial.leg1[k] == BodySide::Right ? r.radius_left : r.radius_right;
+  return out;
+}
+
 }  // namespace
 
 double fitRockerRadius(const std::vector<StanceSamples>& stances) {
@@ -209,8 +231,10 @@ Eigen::MatrixX4d importedJointTorques(const ImportedTrial& trial, const Model& m
 OpenSimAnalysis analyseImportedTrial(const ImportedTrial& trial, const Model& model,
                                      const OpenSimTable* reference_id) {
   OpenSimAnalysis a;
+  a.rocker = rockerReport(trial);
+  const auto placement = rockerPlacement(trial, a.rocker);
   Eigen::MatrixX4d torque(trial.t.size(), 4);
-  std::vector<double> residual, cop, diff, fx, fz;
+  std::vector<double> residual, cop, diff, diff_rocker, fx, fz;
   for (Eigen::Index k = 0; k < trial.t.size(); ++k) {
     const FloatingSample f = floatingSample(trial, model, k);
     torque.row(k) = distalTorques(f.tau).transpose();
@@ -227,16 +251,20 @@ OpenSimAnalysis analyseImportedTrial(const ImportedTrial& trial, const Model& mo
     residual.push_back(v.dot(f.lhs));
     cop.push_back(f.cop_moment[0]);
     diff.push_back(residual.back() - cop.back());
+    const auto [offset, radius] = placement.at(trial.step[k]);
+    const ImportedLeg& leg = trial.legs[int(trial.leg1[k])];
+    const Vec2 arm(offset - radius * leg.shank.v(k) - f.foot[0].x(), leg.cop(k, 1) - f.foot[0].y());
+    diff_rocker.push_back(residual.back() - (arm.x() * leg.force(k, 1) - arm.y() * leg.force(k, 0)));
   }
   a.alpha_residual_rms = rms(residual);
   a.cop_moment_rms = rms(cop);
   a.alpha_minus_cop_rms = rms(diff);
+  a.alpha_minus_rocker_rms = rms(diff_rocker);
   a.alpha_cop_correlation = correlation(residual, cop);
   a.single_support_samples = int(residual.size());
   a.force_residual_rms_x = rms(fx);
   a.force_residual_rms_z = rms(fz);
   if (reference_id) a.joints = compareWithReference(trial, torque, *reference_id, a.edge_margin);
-  a.rocker = rockerReport(trial);
   return a;
 }
 
@@ -254,6 +282,7 @@ std::string opensimAnalysisJson(const OpenSimAnalysis& a) {
   w.key("single_support").beginObject();
   w.key("alpha_residual_rms").value(a.alpha_residual_rms).key("cop_moment_rms").value(a.cop_moment_rms);
   w.key("alpha_minus_cop_rms").value(a.alpha_minus_cop_rms);
+  w.key("alpha_minus_rocker_rms").value(a.alpha_minus_rocker_rms);
   w.key("correlation").value(a.alpha_cop_correlation).key("samples").value(a.single_support_samples);
   w.endObject();
   w.key("force_residual_rms").beginObject().key("x").value(a.force_residual_rms_x);

@@ -51,8 +51,12 @@ struct JointComparison {
 
 struct OpenSimAnalysis {
   std::vector<JointComparison> joints;  // empty without a reference table
-  // Single support, inner samples (edge_margin): α-row residual vs measured CoP moment [N·m].
+  // Single support, inner samples (edge_margin) [N·m]: the α-row residual (what a point foot
+  // would need; the point-foot model predicts 0), the measured CoP moment about the ankle, the
+  // residual left when the measured CoP is used, and when a rocker foot's CoP is (radius
+  // fitted on the other leg, one placement per stance).
   double alpha_residual_rms = 0, cop_moment_rms = 0, alpha_minus_cop_rms = 0;
+  double alpha_minus_rocker_rms = 0;
   double alpha_cop_correlation = 0;
   int single_support_samples = 0;
   // Newton residual of the floating model with the measured reactions [N] (x, z rows).
