@@ -35,6 +35,11 @@ inline std::string writeDamaged(ScratchDir& dir, const std::vector<std::string>&
   return path;
 }
 
+// `text` with the first occurrence of `from` replaced by `to`.
+inline std::string replacedOnce(std::string text, const std::string& from, const std::string& to) {
+  return text.replace(text.find(from), from.size(), to);
+}
+
 // `load(path)` must throw a ConfigError about the whole row at `line` of `path` (no column),
 // whose message contains `problem`.
 template <typename Load>

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/opensim_table.hpp"
@@ -241,6 +242,10 @@ ImportedTrial importOpenSimTrial(const OpenSimImportFiles& files, const RobotPar
   const OpenSimTable grf = readOpenSimTable(files.grf);
   const std::optional<TrcData> trc =
       files.trc.empty() ? std::nullopt : std::optional<TrcData>(readTrcFile(files.trc));
+  for (const auto& [file, n] : {std::pair<std::string, Eigen::Index>{ik.file, ik.rows()},
+                                {files.trc, trc ? trc->time.size() : Eigen::Index(3)}}) {
+    if (n < 3) throw ConfigError(file, "", 0, "fewer than 3 samples: nothing to smooth");
+  }
   const std::vector<Eigen::Index> rows = samplesInside(grf, ik);
   ImportedTrial trial;
   trial.t.resize(static_cast<Eigen::Index>(rows.size()));

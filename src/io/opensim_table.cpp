@@ -1,6 +1,7 @@
 #include "gaitopt/io/opensim_table.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <set>
@@ -59,7 +60,7 @@ std::optional<long> headerCount(const Header& header, const std::string& key,
   const auto it = header.entries.find(key);
   if (it == header.entries.end()) return std::nullopt;
   const double v = parseTableNumber(it->second.value, file, key, it->second.line);
-  if (v < 0 || v != static_cast<double>(static_cast<long>(v))) {
+  if (v < 0 || v > 1e12 || v != std::floor(v)) {
     throw ConfigError(file, key, it->second.line, "must be a non-negative integer");
   }
   return static_cast<long>(v);

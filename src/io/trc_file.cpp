@@ -1,6 +1,7 @@
 #include "gaitopt/io/trc_file.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "gaitopt/io/config_error.hpp"
@@ -22,7 +23,7 @@ long positiveCount(const std::map<std::string, std::string>& values, const std::
   const auto it = values.find(key);
   if (it == values.end()) throw ConfigError(file, key, 3, "missing from the header");
   const double v = parseTableNumber(it->second, file, key, 3);
-  if (v < 1 || v != static_cast<double>(static_cast<long>(v))) {
+  if (v < 1 || v > 1e12 || v != std::floor(v)) {
     throw ConfigError(file, key, 3, "must be a positive integer, got '" + it->second + "'");
   }
   return static_cast<long>(v);

@@ -89,6 +89,10 @@ TEST_CASE("damaged .mot files are refused naming file, column and line", "[opens
     const std::string p = writeDamaged(dir, lines, {{6, "#"}}, ".mot");
     REQUIRE_THROWS_WITH(load(p), Contains(p) && Contains("no 'endheader' line"));
   }
+  SECTION("absurd row count in the header") {
+    const std::string p = writeDamaged(dir, lines, {{3, "nRows=1e300"}}, ".mot");
+    requireConfigError(load, p, "nRows", 3, "must be a non-negative integer");
+  }
   SECTION("missing inDegrees") {
     const std::string p = writeDamaged(dir, lines, {{5, "#"}}, ".mot");
     requireConfigError(load, p, "inDegrees", 6, "missing from the header");
@@ -98,9 +102,8 @@ TEST_CASE("damaged .mot files are refused naming file, column and line", "[opens
     requireConfigError(load, p, "time", 9, "does not increase strictly");
   }
   SECTION("duplicate column") {
-    std::string names = lines[6];
-    names.replace(names.find("ground_force_vz"), 15, "ground_force_vy");
-    const std::string p = writeDamaged(dir, lines, {{7, names}}, ".mot");
+    const std::string p = writeDamaged(
+        dir, lines, {{7, replacedOnce(lines[6], "ground_force_vz", "ground_force_vy")}}, ".mot");
     requireConfigError(load, p, "ground_force_vy", 7, "duplicate column name");
   }
 }
@@ -132,15 +135,11 @@ TEST_CASE("damaged .trc files are refused naming file, column and line", "[opens
     requireConfigError(load, p, "R.ASIS.X", 7, "empty value");
   }
   SECTION("non-numeric time") {
-    std::string row = lines[6];
-    row.replace(row.find("0.000000"), 8, "t0");
-    const std::string p = writeDamaged(dir, lines, {{7, row}}, ".trc");
+    const std::string p = writeDamaged(dir, lines, {{7, replacedOnce(lines[6], "0.000000", "t0")}}, ".trc");
     requireConfigError(load, p, "Time", 7, "not a number: 't0'");
   }
   SECTION("units other than mm or m") {
-    std::string values = lines[2];
-    values.replace(values.find("mm"), 2, "cm");
-    const std::string p = writeDamaged(dir, lines, {{3, values}}, ".trc");
+    const std::string p = writeDamaged(dir, lines, {{3, replacedOnce(lines[2], "mm", "cm")}}, ".trc");
     requireConfigError(load, p, "Units", 3, "must be 'mm' or 'm'");
   }
 }
