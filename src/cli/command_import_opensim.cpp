@@ -22,6 +22,7 @@ struct ImportArgs {
   std::string robot = "configs/robot/human_subject01.yaml";
   std::optional<double> belt_speed;
   double cutoff_hz = 6.0;
+  std::string trunk = "markers";
 };
 
 void printSummary(const ImportedTrial& trial) {
@@ -76,6 +77,11 @@ void registerImportOpenSimCommand(CLI::App& app, int& exit_code) {
                   "Kinematics smoothing spline: frequency of gain 1/2 [Hz]")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--trunk", args->trunk,
+                  "Trunk line: 'markers' (pelvis to shoulders, needs --trc) or 'model' (hip to "
+                  "the IK model's pelvis + torso CoM)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"markers", "model"}));
   cmd->add_option("--out", args->out, "Measured-data CSV to write")->required();
   cmd->add_option("--report", args->report,
                   "Also write the point-foot analysis (inverse dynamics vs --id, alpha-row "
@@ -85,6 +91,7 @@ void registerImportOpenSimCommand(CLI::App& app, int& exit_code) {
     OpenSimImportOptions options;
     options.belt_speed = args->belt_speed;
     options.cutoff_hz = args->cutoff_hz;
+    options.trunk_from_markers = args->trunk == "markers";
     const ImportedTrial trial = importOpenSimTrial(args->files, robot, options);
     std::optional<OpenSimTable> id;
     if (!args->id.empty()) id = readOpenSimTable(args->id);

@@ -258,7 +258,7 @@ ImportedTrial importOpenSimTrial(const OpenSimImportFiles& files, const RobotPar
   trial.legs[1].shank = sampled(kin, trial.t, kShankL);
   trial.hip_x = sampled(kin, trial.t, kHipX);
   trial.hip_z = sampled(kin, trial.t, kHipZ);
-  if (trc) {
+  if (trc && options.trunk_from_markers) {
     trial.trunk = sampled(fitSpline(trc->time, markerTrunkAngle(*trc, options), options.cutoff_hz),
                           trial.t, 0);
     trial.trunk_source = "markers";

@@ -171,6 +171,12 @@ TEST_CASE("import: segment angles against the markers", "[opensim_import]") {
   const ImportedTrial ik_only = importOpenSimTrial({opensimIk(), opensimGrf(), ""}, human());
   CHECK(ik_only.trunk_source == "IK model CoM");
   CHECK(ik_only.trunk.v.mean() == Approx(t.trunk.v.mean()).margin(3.0 * kDeg));
+  OpenSimImportOptions model_trunk;
+  model_trunk.trunk_from_markers = false;
+  const ImportedTrial with_trc = importOpenSimTrial({opensimIk(), opensimGrf(), opensimTrc()}, human(), model_trunk);
+  CHECK(with_trc.trunk_source == "IK model CoM");
+  CHECK(with_trc.belt_source == "heel markers");
+  CHECK(with_trc.trunk.v.isApprox(ik_only.trunk.v));
 }
 
 TEST_CASE("import-opensim CLI: CSV at the GRF rate; bad input exits 2 writing nothing",

@@ -38,6 +38,9 @@ struct OpenSimImportOptions {
   std::optional<double> belt_speed;  // [m/s], > 0 when the belt carries the feet towards −X
   double contact_threshold = 20.0;   // [N]: a foot is in contact while its vertical force exceeds it
   double cutoff_hz = 6.0;            // smoothing-spline gain 1/2 frequency (smoothing_spline.hpp)
+  // Trunk line from the pelvis-to-shoulder markers when a .trc is given (the data README's
+  // advice); false: through the IK model's lumped pelvis + torso CoM even with markers.
+  bool trunk_from_markers = true;
   std::string right_plate = "ground_force_", left_plate = "1_ground_force_";  // GRF column prefixes
   std::vector<std::string> pelvis_markers{"R.ASIS", "L.ASIS", "V.Sacral"};
   std::vector<std::string> shoulder_markers{"R.Acromium", "L.Acromium"};
