@@ -265,3 +265,67 @@ TEST_CASE("analysis: rocker radius of the shipped trial, held out across legs", 
   CHECK(r.holdout_gain_pct > 50.0);
   CHECK(r.leg_length == Approx(0.97).margin(0.05));
 }
+
+TEST_CASE("analysis: static one-leg stance gives the hand-computed distal joint torques",
+          "[opensim_import]") {
+  // Standing still on the right leg, the ground pushing M g straight up under the body's CoM.
+  const RobotParams& r = human();
+  const Model model = buildModel(r);
+  const double g = r.gravity, M = model.total_mass;
+  const double th[2] = {-0.15, 0.35}, sh[2] = {0.1, 0.05}, psi = -0.08;  // right, left
+  const Eigen::Vector2d hip(0.3, 0.9);
+  const auto down = [](double a) { return Eigen::Vector2d(std::sin(a), -std::cos(a)); };
+  Eigen::Vector2d knee[2], G_femur[2], G_tibia[2];
+  Eigen::Vector2d com = Eigen::Vector2d::Zero();  // Σ m_i G_i / M
+  for (int s = 0; s < 2; ++s) {
+    knee[s] = hip + r.l2 * down(th[s]);
+    G_femur[s] = hip + r.s[1] * down(th[s]);
+    G_tibia[s] = knee[s] + r.s[0] * down(sh[s]);
+    com += r.mass[1] * G_femur[s] + r.mass[0] * G_tibia[s];
+  }
+  com += r.mass[2] * (hip + r.s[2] * Eigen::Vector2d(-std::sin(psi), std::cos(psi)));
+  com /= M;
+  ImportedTrial t;
+  const int n = 3;
+  t.t = Eigen::VectorXd::LinSpaced(n, 0.0, 0.02);
+  const auto constant = [n](double v) {
+    return SmoothedSignal{Eigen::VectorXd::Constant(n, v), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
+  };
+  for (int s = 0; s < 2; ++s) {
+    ImportedLeg& leg = t.legs[s];
+    leg.thigh = constant(th[s]);
+    leg.shank = constant(sh[s]);
+    leg.force = Eigen::MatrixX2d::Zero(n, 2);
+    leg.cop = Eigen::MatrixX2d::Zero(n, 2);
+    leg.contact.assign(n, s == 0);
+  }
+  t.legs[0].force.col(1).setConstant(M * g);
+  t.legs[0].cop.col(0).setConstant(com.x());
+  t.trunk = constant(psi);
+  t.hip_x = constant(hip.x());
+  t.hip_z = constant(hip.y());
+  t.leg1.assign(n, BodySide::Right);
+  t.step.assign(n, 0);
+  t.double_support.assign(n, false);
+  Eigen::RowVectorXd q(5);  // (1.13) as documented in the README
+  q << sh[0], th[0] - sh[0] - M_PI, th[0] - M_PI - psi, th[1] - th[0], th[1] - sh[1] - M_PI;
+  t.q = q.replicate(n, 1);
+  t.qd = Eigen::MatrixXd::Zero(n, 5);
+  t.qdd = Eigen::MatrixXd::Zero(n, 5);
+  const Eigen::MatrixX4d torque = importedJointTorques(t, model);
+  const auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& f) { return a.x() * f.y() - a.y() * f.x(); };
+  const Eigen::Vector2d w1(0, -r.mass[0] * g), w2(0, -r.mass[1] * g), ground(0, M * g);
+  const Eigen::Vector2d cop(com.x(), 0.0);
+  // Moment (counter-clockwise) the joint must put on its distal links; Γ acts on them as −Γ.
+  const double knee_stance = -(cross(G_tibia[0] - knee[0], w1) + cross(cop - knee[0], ground));
+  const double hip_stance = -(cross(G_tibia[0] - hip, w1) + cross(G_femur[0] - hip, w2) + cross(cop - hip, ground));
+  const double hip_swing = -(cross(G_tibia[1] - hip, w1) + cross(G_femur[1] - hip, w2));
+  const double knee_swing = -cross(G_tibia[1] - knee[1], w1);
+  for (int k = 0; k < n; ++k) {
+    CHECK(torque(k, 0) == Approx(-knee_stance).margin(1e-9));
+    CHECK(torque(k, 1) == Approx(-hip_stance).margin(1e-9));
+    CHECK(torque(k, 2) == Approx(-hip_swing).margin(1e-9));
+    CHECK(torque(k, 3) == Approx(-knee_swing).margin(1e-9));
+  }
+  CHECK(std::abs(knee_stance) > 1.0);  // a case that can fail
+}
