@@ -231,6 +231,7 @@ Eigen::MatrixX4d importedJointTorques(const ImportedTrial& trial, const Model& m
 OpenSimAnalysis analyseImportedTrial(const ImportedTrial& trial, const Model& model,
                                      const OpenSimTable* reference_id) {
   OpenSimAnalysis a;
+  a.stances = importedStances(trial);
   a.rocker = rockerReport(trial);
   const auto placement = rockerPlacement(trial, a.rocker);
   Eigen::MatrixX4d torque(trial.t.size(), 4);
@@ -297,6 +298,18 @@ std::string opensimAnalysisJson(const OpenSimAnalysis& a) {
   w.key("leg_length").value(r.leg_length).key("literature_radius").value(r.literature_radius);
   w.key("radius_over_leg_length").value(r.radius_all / r.leg_length);
   w.endObject();
+  // Every 5th sample of each stance (120 Hz at 600 Hz plates), for plots.
+  w.key("stances").beginArray();
+  for (const StanceSamples& st : a.stances) {
+    const Eigen::Index m = (st.shank.size() + 4) / 5;
+    const auto every5 = [m](const Eigen::VectorXd& v) {
+      return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<5>>(v.data(), m));
+    };
+    w.beginObject().key("side").value(sideName(st.side));
+    w.key("shank").value(every5(st.shank)).key("cop_x").value(every5(st.cop_x));
+    w.key("vertical_force").value(every5(st.weight)).endObject();
+  }
+  w.endArray();
   w.endObject();
   return w.str();
 }

@@ -194,6 +194,13 @@ TEST_CASE("import-opensim CLI: CSV at the GRF rate; bad input exits 2 writing no
   CHECK(rows[1].rfind("0,", 0) == 0);
   CHECK(rows[1501].rfind("2.5,", 0) == 0);
   CHECK_THAT(rows[1501], Contains(",DS,left,4,"));
+  const std::string report = dir.fresh("report") + ".json";
+  const CliRun analysed = runCli(base + " --id " + quoted(opensimId()) + " --out " + quoted(out) +
+                                 " --report " + quoted(report));
+  REQUIRE(analysed.exit_code == 0);
+  CHECK_THAT(analysed.out, Contains("(IK ankle)") && Contains("knee_right: RMS difference to OpenSim"));
+  CHECK_THAT(readFile(report), Contains("\"joint\": \"knee_left\"") && Contains("\"radius_all\"") &&
+                                   Contains("\"stances\"") && Contains("\"side\": \"right\""));
 
   const std::vector<std::string> grf = fileLines(opensimGrf());
   const std::string bad = writeDamaged(dir, grf, {{500, grf[499] + "\tx"}}, ".mot");

@@ -62,6 +62,7 @@ struct OpenSimAnalysis {
   // Newton residual of the floating model with the measured reactions [N] (x, z rows).
   double force_residual_rms_x = 0, force_residual_rms_z = 0;
   RockerFootReport rocker;
+  std::vector<StanceSamples> stances;  // those the rocker was fitted on
   double edge_margin = 0.1;  // [s] left out at both ends of the record (spline end effects)
 };
 

@@ -1,0 +1,61 @@
+#!/usr/bin/python3
+"""Rocker-foot figure of `gaitopt import-opensim --report REPORT.json`.
+
+Usage: scripts/plot/opensim_rocker.py REPORT.json [OUT.png]   (default: REPORT.png)
+
+Left: centre-of-pressure travel against the stance-shank angle alpha, one curve per stance
+(CoP and alpha centred on each stance's force-weighted means), with the fitted rocker lines
+(slope -r) and the roll-over-shape literature value (0.3 x leg length). A point foot would be
+a horizontal line. Right: the same travel against time within the stance.
+Needs the Debian packages python3-numpy and python3-matplotlib.
+"""
+import json
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def centred(values, weights):
+    return values - np.average(values, weights=weights)
+
+
+def main():
+    if len(sys.argv) not in (2, 3):
+        sys.exit(__doc__)
+    report_path = sys.argv[1]
+    out = sys.argv[2] if len(sys.argv) == 3 else report_path.rsplit(".", 1)[0] + ".png"
+    with open(report_path) as f:
+        report = json.load(f)
+    rocker = report["rocker_foot"]
+    fig, (ax_a, ax_t) = plt.subplots(1, 2, figsize=(11, 4.5))
+    colours = {"right": "tab:red", "left": "tab:blue"}
+    span = np.array([-0.45, 0.45])
+    for stance in report["stances"]:
+        w = np.array(stance["vertical_force"])
+        a = centred(np.array(stance["shank"]), w)
+        c = centred(np.array(stance["cop_x"]), w)
+        ax_a.plot(np.degrees(a), c, color=colours[stance["side"]], alpha=0.7)
+        ax_t.plot(np.arange(len(c)) / 120.0, c, color=colours[stance["side"]], alpha=0.7)
+    for name, r, style in (("fit, all stances", rocker["radius_all"], "k-"),
+                           ("0.3 x leg length", rocker["literature_radius"], "k--")):
+        ax_a.plot(np.degrees(span), -r * span, style, label="%s: r = %.3f m" % (name, r))
+    ax_a.axhline(0.0, color="grey", lw=0.8, label="point foot")
+    ax_a.set_xlabel("stance-shank angle alpha - mean [deg]")
+    ax_a.set_ylabel("CoP x - mean [m]")
+    ax_a.set_title("CoP travel vs shank rotation (red right, blue left)")
+    ax_a.legend(fontsize=8)
+    ax_t.set_xlabel("time in stance [s]")
+    ax_t.set_ylabel("CoP x - mean [m]")
+    ax_t.set_title("held-out CoP RMS: point %.1f mm, rocker %.1f mm" % (
+        1e3 * rocker["holdout_cop_rms_point_foot"], 1e3 * rocker["holdout_cop_rms_rocker"]))
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    print(out)
+
+
+if __name__ == "__main__":
+    main()
