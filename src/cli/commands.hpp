@@ -14,5 +14,6 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code);
 void registerSweepCommands(CLI::App& app, int& exit_code);  // sweep, sweep-merge
 void registerExportCommand(CLI::App& app, int& exit_code);
 void registerExportModelCommand(CLI::App& app, int& exit_code);
+void registerSimulateCommand(CLI::App& app, int& exit_code);
 
 }  // namespace gaitopt::cli

@@ -154,8 +154,8 @@ class Walker {
 
   void record(double t, const Eigen::VectorXd& y, int step) {
     const PhaseEval e = evaluate(t, y);
-    out_.samples.push_back({t, step, ss_, y.head<5>(), y.segment<5>(5), e.gamma_star, e.error,
-                            e.R1, e.R2});
+    out_.samples.push_back({t, step, ss_, y.head<5>(), y.segment<5>(5), e.qdd, e.gamma_star,
+                            e.error, e.R1, e.R2});
     WalkStep& s = out_.steps.back();
     if (ss_) s.max_output_error = std::max(s.max_output_error, e.error.cwiseAbs().maxCoeff());
     s.min_normal_force = std::min({s.min_normal_force, e.R1(1), ss_ ? e.R1(1) : e.R2(1)});

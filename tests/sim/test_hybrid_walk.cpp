@@ -3,9 +3,11 @@
 // and a touchdown with foot velocity is reported as needing the impact model.
 #include <catch2/catch.hpp>
 
+#include "gaitopt/export/controller_export.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/model/dynamics_pinned.hpp"
 #include "gaitopt/sim/hybrid_walk.hpp"
+#include "test_files.hpp"
 #include "test_support.hpp"
 
 namespace gaitopt::test {
@@ -92,6 +94,38 @@ TEST_CASE("Touchdown with foot velocity is reported: impact model not available"
   const WalkResult r = simulateWalk(f.evaluation, f.model, f.model, req);
   CHECK(r.outcome != WalkOutcome::Completed);
   CHECK(r.steps.size() == 1);
+}
+
+}  // namespace gaitopt::test
+
+namespace gaitopt::test {
+
+TEST_CASE("gaitopt simulate CLI: outputs, outcome, bad input", "[sim]") {
+  ScratchDir dir("simulate");
+  const std::string gait = sourcePath("configs/gait/default_step.yaml");
+  const std::string out = dir.fresh("walk");
+  CliRun run = runCli("simulate --gait " + quoted(gait) + " --steps 2 --perturb alphad=0.01 --out " +
+                      quoted(out));
+  INFO(run.err);
+  REQUIRE(run.exit_code == 0);
+  const std::string summary = readFile(out + "/summary.json");
+  CHECK_THAT(summary, Catch::Matchers::Contains("\"outcome\": \"completed\""));
+  CHECK_THAT(summary, Catch::Matchers::Contains("\"converged_to_cycle\": true"));
+  const ExportCsvFile traj = readExportCsv(out + "/trajectory.csv");
+  CHECK(traj.rows.back().step == 1);
+  CHECK(traj.rows.front().stance == Leg::Left);
+  // A plant without the support bar: tracking errors remain at touchdown.
+  const std::string out2 = dir.fresh("walk");
+  run = runCli("simulate --gait " + quoted(gait) + " --steps 2 --plant " +
+               quoted(sourcePath("configs/robot/rabbit_miossec_nobar.yaml")) + " --out " +
+               quoted(out2));
+  CHECK(run.exit_code == 3);
+  CHECK_THAT(readFile(out2 + "/summary.json"),
+             Catch::Matchers::Contains("impact model not available"));
+  run = runCli("simulate --gait " + quoted(gait) + " --perturb knee=1 --out " +
+               quoted(dir.fresh("bad")));
+  CHECK(run.exit_code == 2);
+  CHECK_THAT(run.err, Catch::Matchers::Contains("unknown KIND 'knee'"));
 }
 
 }  // namespace gaitopt::test

@@ -52,7 +52,7 @@ struct WalkSample {
   double t;
   int step;
   bool single_support;
-  Vec5 q, qd;
+  Vec5 q, qd, qdd;
   Vec4 gamma_star;
   Vec4 output_error;  // y (SS) or (α, δ1, δ2) tracking error and 0 (DS)
   Vec2 R1, R2;
