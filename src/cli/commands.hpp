@@ -15,5 +15,6 @@ void registerSweepCommands(CLI::App& app, int& exit_code);  // sweep, sweep-merg
 void registerExportCommand(CLI::App& app, int& exit_code);
 void registerExportModelCommand(CLI::App& app, int& exit_code);
 void registerSimulateCommand(CLI::App& app, int& exit_code);
+void registerStabilityCommand(CLI::App& app, int& exit_code);
 
 }  // namespace gaitopt::cli

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   gaitopt::cli::registerExportCommand(app, exit_code);
   gaitopt::cli::registerExportModelCommand(app, exit_code);
   gaitopt::cli::registerSimulateCommand(app, exit_code);
+  gaitopt::cli::registerStabilityCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -7,6 +7,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace gaitopt {
 
@@ -64,7 +65,11 @@ CvodeIntegrator::CvodeIntegrator(int n, const Rhs& rhs, int n_roots, const Roots
   s.nls = SUNNonlinSol_FixedPoint(s.y, 0, s.ctx);
   check(CVodeSetNonlinearSolver(s.mem, s.nls), "CVodeSetNonlinearSolver");
   check(CVodeSetMaxNumSteps(s.mem, 100000), "CVodeSetMaxNumSteps");
-  if (n_roots > 0) check(CVodeRootInit(s.mem, n_roots, Impl::g), "CVodeRootInit");
+  if (n_roots > 0) {
+    check(CVodeRootInit(s.mem, n_roots, Impl::g), "CVodeRootInit");
+    std::vector<int> falling(n_roots, -1);  // events are crossings from positive to negative
+    check(CVodeSetRootDirection(s.mem, falling.data()), "CVodeSetRootDirection");
+  }
 }
 
 CvodeIntegrator::~CvodeIntegrator() {

@@ -165,6 +165,12 @@ class Walker {
   CvodeIntegrator::Result phase(double t0, const Eigen::VectorXd& y0, int step) {
     cv_.reset(t0, y0);
     record(t0, y0, step);
+    // Events are falling crossings; a force or fall condition already violated at the phase
+    // start is one too (the swing foot starts on the ground at lift-off: not checked).
+    Eigen::VectorXd g;
+    roots(t0, y0, g);
+    for (int i = 0; i < kRoots; ++i)
+      if (g(i) < 0.0 && !(ss_ && i == 1)) return {t0, y0, i};
     const double dt = 1.0 / req_.sample_rate;
     double next = (std::floor(t0 / dt) + 1.0) * dt;
     for (;;) {
@@ -241,9 +247,13 @@ WalkResult Walker::run() {
   qs(0) = 1.0;
   for (int j = 0; j < 4; ++j) qs(j + 1) = mo_.ss_path[j](q0(0)).first;
   y << q0, qs * (mo_.alphadot_iSS + req_.dalphad0), 0.0, 0.0;
+  if (req_.use_initial_state) y << req_.q_init, req_.qd_init, 0.0, 0.0;
   double t = 0.0;
-  for (int k = 0; k < req_.steps; ++k)
+  for (int k = 0; k < req_.steps; ++k) {
     if (!singleSupport(t, y, k) || !doubleSupport(t, y, k)) break;
+    out_.q_end = y.head<5>();
+    out_.qd_end = y.segment<5>(5);
+  }
   return out_;
 }
 

@@ -20,7 +20,8 @@ class CvodeIntegrator {
   using Rhs = std::function<void(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot)>;
   using Roots = std::function<void(double t, const Eigen::VectorXd& y, Eigen::VectorXd& g)>;
 
-  // `roots` returns `n_roots` event functions; an event is a zero crossing of one of them.
+  // `roots` returns `n_roots` event functions; an event is a crossing of one of them from
+  // positive to negative.
   CvodeIntegrator(int n, const Rhs& rhs, int n_roots, const Roots& roots,
                   const CvodeTolerances& tol = {});
   ~CvodeIntegrator();

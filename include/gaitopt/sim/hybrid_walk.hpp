@@ -34,6 +34,8 @@ struct WalkRequest {
   double bandwidth = 40.0;  // ω [rad/s] of the critically damped output dynamics
   double sample_rate = 200.0;  // trajectory rows [Hz] (events are always recorded)
   double friction_coefficient = 0.8;  // of the DS force split's cones (gait option)
+  bool use_initial_state = false;  // start from (q_init, qd_init) instead of the gait's SS start
+  Vec5 q_init = Vec5::Zero(), qd_init = Vec5::Zero();
   Vec5 dq0 = Vec5::Zero();     // perturbation of q at the first SS start
   double dalphad0 = 0.0;       // perturbation of α̇ there; q̇ = q*(α) α̇ keeps y, ẏ at 0
   CvodeTolerances tolerances;
@@ -75,6 +77,7 @@ struct WalkResult {
   std::string message;
   std::vector<WalkStep> steps;
   std::vector<WalkSample> samples;
+  Vec5 q_end = Vec5::Zero(), qd_end = Vec5::Zero();  // state at the last lift-off reached
 };
 
 // `controller` is the model the controller is built on (its friction compensated), `plant` the
