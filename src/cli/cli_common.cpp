@@ -19,6 +19,12 @@ void requireDirectoryOrAbsent(const std::string& out) {
     throw CLI::ValidationError("--out", "'" + out + "' exists and is not a directory");
 }
 
+void requireFileOutput(const std::string& out) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(out, ec))
+    throw CLI::ValidationError("--out", "'" + out + "' is a directory, a file is expected");
+}
+
 std::optional<double> criterionOf(const OptimizationResult& r, Criterion c) {
   if (!r.evaluation.motion_computed || !r.evaluation.defined()) return std::nullopt;
   return criterionValue(r.evaluation, c);

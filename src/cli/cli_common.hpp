@@ -16,6 +16,9 @@ std::string shortNumber(double v, const char* format = "%.6g");
 // before anything is written.
 void requireDirectoryOrAbsent(const std::string& out);
 
+// Bad input (CLI::ValidationError at --out) when the output file `out` is a directory.
+void requireFileOutput(const std::string& out);
+
 // The criterion of a result; it exists only for a defined step whose motion was computed.
 std::optional<double> criterionOf(const OptimizationResult& r, Criterion c);
 

@@ -18,6 +18,10 @@ int main(int argc, char** argv) {
   gaitopt::cli::registerOptimizeCommand(app, exit_code);
   gaitopt::cli::registerSweepCommands(app, exit_code);
   gaitopt::cli::registerImportOpenSimCommand(app, exit_code);
+  gaitopt::cli::registerExportCommand(app, exit_code);
+  gaitopt::cli::registerExportModelCommand(app, exit_code);
+  gaitopt::cli::registerSimulateCommand(app, exit_code);
+  gaitopt::cli::registerStabilityCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -43,22 +43,28 @@ std::vector<double> phaseTimes(double duration, double rate) {
 std::vector<TrajectoryRow> sampleTrajectory(const GaitEvaluator& ev,
                                             const GaitEvaluation<double>& e, double rate) {
   if (!e.motion_computed) throw std::logic_error("sampleTrajectory: the step motion is undefined");
+  std::vector<TrajectoryRow> rows;
+  for (double t : phaseTimes(e.motion.T_SS, rate))
+    rows.push_back(sampleTrajectoryAt(ev, e, Phase::SingleSupport, t));
+  for (double t : phaseTimes(e.motion.T_DS, rate))
+    rows.push_back(sampleTrajectoryAt(ev, e, Phase::DoubleSupport, t));
+  return rows;
+}
+
+TrajectoryRow sampleTrajectoryAt(const GaitEvaluator& ev, const GaitEvaluation<double>& e,
+                                 Phase phase, double t) {
+  if (!e.motion_computed) throw std::logic_error("sampleTrajectoryAt: the step motion is undefined");
   const GaitMotion<double>& mo = e.motion;
   const Model& m = ev.model();
-  std::vector<TrajectoryRow> rows;
-  for (double t : phaseTimes(mo.T_SS, rate)) {
-    const double s = ssCoordinateAt(ev.ssGrid(), mo.ss_time, t);
-    const double alpha = chebyshevToInterval(s, mo.alpha_iSS, mo.alpha_fSS);
-    const double phi = ev.ssGrid().interpolate(mo.ss_phi, s);
-    const detail::SsPathPoint<double> pt = detail::ssPathPoint(m, mo, alpha);
-    double ad, add;
-    detail::zeroDynamicsRates(pt, phi, mo, ev.options().f_min, ad, add);
-    rows.push_back(toRow(t, Phase::SingleSupport, detail::ssSample(m, pt, ad, add)));
-  }
-  for (double t : phaseTimes(mo.T_DS, rate))
-    rows.push_back(
-        toRow(mo.T_SS + t, Phase::DoubleSupport, detail::dsSample(m, ev.options(), mo, t)));
-  return rows;
+  if (phase == Phase::DoubleSupport)
+    return toRow(mo.T_SS + t, phase, detail::dsSample(m, ev.options(), mo, t));
+  const double s = ssCoordinateAt(ev.ssGrid(), mo.ss_time, t);
+  const double alpha = chebyshevToInterval(s, mo.alpha_iSS, mo.alpha_fSS);
+  const double phi = ev.ssGrid().interpolate(mo.ss_phi, s);
+  const detail::SsPathPoint<double> pt = detail::ssPathPoint(m, mo, alpha);
+  double ad, add;
+  detail::zeroDynamicsRates(pt, phi, mo, ev.options().f_min, ad, add);
+  return toRow(t, phase, detail::ssSample(m, pt, ad, add));
 }
 
 std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows) {

@@ -27,6 +27,11 @@ std::vector<TrajectoryRow> sampleTrajectory(const GaitEvaluator& evaluator,
                                             const GaitEvaluation<double>& evaluation,
                                             double rate);
 
+// One sample at time t from the start of `phase` (0 ≤ t ≤ T_SS or T_DS); its `t` is from SS
+// start. Requires evaluation.motion_computed.
+TrajectoryRow sampleTrajectoryAt(const GaitEvaluator& evaluator,
+                                 const GaitEvaluation<double>& evaluation, Phase phase, double t);
+
 // trajectory.csv: t, phase, alpha, delta1..4, alphad, delta1d..4d, alphadd, delta1dd..4dd,
 // gamma1..4 (Γ*), R1x, R1z, R2x, R2z, x_swing, z_swing, x_com, z_com.
 std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows);

@@ -1,0 +1,89 @@
+#pragma once
+// Controller export: N consecutive steps of a gait at a fixed rate, with the physical stance
+// leg alternating, in the quantities a joint-level controller consumes (seed 002 §3): phase
+// variable α and its rates, joint-side motor angles φ = D_Γᵀ q per physical motor, feedforward
+// torques Γ* split into their dynamic parts, planned feet and reactions in the world frame.
+// Also the virtual-constraint polynomials of each phase with a normalised phase variable.
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/gait/trajectory.hpp"
+#include "gaitopt/io/gait_file.hpp"
+
+namespace gaitopt {
+
+enum class Leg { Left, Right };
+
+// Physical motors in export order; arrays indexed by this order.
+inline const std::array<const char*, 4> kPhysicalJoints{"knee_left", "hip_left", "hip_right",
+                                                        "knee_right"};
+
+struct ExportRow {
+  double t = 0.0;   // from the start of the first step [s]
+  int step = 0;     // 0-based; step k = SS_k followed by DS_k
+  Phase phase = Phase::SingleSupport;
+  Leg stance = Leg::Left;  // the physical leg carried as leg 1 (in DS: the front leg)
+  double alpha = 0.0, alphad = 0.0, alphadd = 0.0;  // leg-1 tibia from the vertical
+  Vec2 hip = Vec2::Zero();                          // world frame, first stance foot at 0
+  double trunk_angle = 0.0;  // θ3 − π/2: trunk from the vertical, > 0 leaning backward
+  // Per physical joint (kPhysicalJoints order).
+  Vec4 phi = Vec4::Zero(), phid = Vec4::Zero(), phidd = Vec4::Zero(), motor = Vec4::Zero();
+  Vec4 tau = Vec4::Zero();  // Γ* = inertial + gravity + contact + friction
+  Vec4 tau_inertial = Vec4::Zero(), tau_gravity = Vec4::Zero(), tau_contact = Vec4::Zero(),
+       tau_friction = Vec4::Zero();
+  Vec2 foot_left = Vec2::Zero(), foot_right = Vec2::Zero();
+  Vec2 R_left = Vec2::Zero(), R_right = Vec2::Zero();
+};
+
+struct ExportRequest {
+  int steps = 1;        // ≥ 1
+  double rate = 1000;   // Hz, > 0
+  Leg first_stance = Leg::Left;
+};
+
+// The multi-step trajectory. `model` carries the robot file's full friction (the feedforward
+// must overcome it whatever the gait was optimised with); `evaluation.motion_computed`
+// required. Samples t_i = i/rate for 0 ≤ t_i ≤ steps·(T_SS + T_DS); a sample on a phase
+// boundary belongs to the phase that starts there (the last one to the final DS).
+std::vector<ExportRow> exportTrajectory(const GaitEvaluator& evaluator,
+                                        const GaitEvaluation<double>& evaluation,
+                                        const Model& model, const ExportRequest& request);
+
+// One exported sample from a trajectory row of one step (frame of foot 1) placed in the world.
+ExportRow exportRow(const Model& model, const TrajectoryRow& row, int step, Leg stance,
+                    double foot1_x, double t);
+
+// `#` metadata lines of the export: key → value, written in key order.
+using ExportMetadata = std::map<std::string, std::string>;
+
+ExportMetadata exportMetadata(const GaitFile& gait, const GaitEvaluation<double>& evaluation,
+                              const ExportRequest& request);
+
+// Column names and units in file order.
+std::vector<std::pair<std::string, std::string>> exportColumns();
+
+std::string exportCsv(const ExportMetadata& meta, const std::vector<ExportRow>& rows);
+
+// JSON: metadata, columns with units, the samples column-wise, and per phase the virtual
+// constraints as polynomials of a normalised phase variable (README "gaitopt export").
+std::string exportJson(const ExportMetadata& meta, const std::vector<ExportRow>& rows,
+                       const GaitEvaluation<double>& evaluation);
+
+struct ExportCsvFile {
+  ExportMetadata meta;
+  std::vector<ExportRow> rows;
+};
+
+// Reads a file written by exportCsv; throws ConfigError naming the file, row and column.
+ExportCsvFile readExportCsv(const std::string& path);
+
+// Coefficients a_k of p(s) = Σ a_k s^k for p(x) = Σ c_k (x − x0)^k and s = (x − x0)/h.
+std::vector<double> normalisedMonomials(const LocalPolynomial<double>& p, double h);
+
+// Bernstein (Bézier) coefficients on s ∈ [0, 1] of the monomial coefficients a_k.
+std::vector<double> bezierFromMonomials(const std::vector<double>& a);
+
+}  // namespace gaitopt

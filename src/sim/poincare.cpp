@@ -1,0 +1,74 @@
+#include "gaitopt/sim/poincare.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+
+namespace gaitopt {
+
+Eigen::MatrixXd finiteDifferenceJacobian(const StepMap& P, const Eigen::VectorXd& x,
+                                         const Eigen::VectorXd& h) {
+  const Eigen::Index n = x.size();
+  Eigen::MatrixXd J(P(x).size(), n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Eigen::VectorXd xp = x, xm = x;
+    xp(i) += h(i);
+    xm(i) -= h(i);
+    J.col(i) = (P(xp) - P(xm)) / (2.0 * h(i));
+  }
+  return J;
+}
+
+PoincareLinearisation linearisePoincare(const StepMap& P, const Eigen::VectorXd& x,
+                                        const Eigen::VectorXd& h) {
+  PoincareLinearisation r;
+  r.fixed_point_residual = (P(x) - x).lpNorm<Eigen::Infinity>();
+  r.jacobian = finiteDifferenceJacobian(P, x, h);
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(r.jacobian);
+  std::vector<Eigen::Index> order(x.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) {
+    return std::abs(es.eigenvalues()(a)) > std::abs(es.eigenvalues()(b));
+  });
+  r.eigenvalues.resize(x.size());
+  for (Eigen::Index i = 0; i < x.size(); ++i) r.eigenvalues(i) = es.eigenvalues()(order[i]);
+  r.dominant_vector = es.eigenvectors().col(order[0]).normalized();
+  return r;
+}
+
+double powerIteration(const StepMap& P, const Eigen::VectorXd& x, const Eigen::VectorXd& dx_max,
+                      int iterations, Eigen::VectorXd& vector) {
+  const Eigen::VectorXd Px = P(x);
+  vector = dx_max;
+  double c = 0.0;
+  for (int k = 0; k < iterations; ++k) {
+    const Eigen::VectorXd g = P(x + vector) - Px;
+    Eigen::Index j = 0;
+    g.cwiseQuotient(dx_max).cwiseAbs().maxCoeff(&j);
+    c = g(j) / dx_max(j);  // signed, (4.61)
+    vector = g / c;
+  }
+  return c;
+}
+
+StepMap walkingStepMap(const GaitEvaluation<double>& e, const Model& controller,
+                       const Model& plant, const WalkRequest& base) {
+  return [&e, &controller, &plant, base](const Eigen::VectorXd& x) {
+    WalkRequest req = base;
+    req.steps = 1;
+    req.use_initial_state = true;
+    req.q_init = x.head<5>();
+    req.qd_init = x.tail<5>();
+    req.sample_rate = 1.0;  // no samples needed between events
+    const WalkResult r = simulateWalk(e, controller, plant, req);
+    if (r.outcome != WalkOutcome::Completed)
+      throw std::runtime_error(std::string("walking step map: ") + outcomeName(r.outcome) + ": " +
+                               r.message);
+    Eigen::VectorXd y(10);
+    y << r.q_end, r.qd_end;
+    return y;
+  };
+}
+
+}  // namespace gaitopt
