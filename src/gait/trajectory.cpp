@@ -55,6 +55,7 @@ std::vector<TrajectoryRow> sampleTrajectory(const GaitEvaluator& ev,
     detail::zeroDynamicsRates(pt, phi, mo, ev.options().f_min, ad, add);
     rows.push_back(toRow(t, Phase::SingleSupport, detail::ssSample(m, pt, ad, add)));
   }
+  if (!ev.options().parameterisation.hasDoubleSupport()) return rows;  // impact, then SS
   for (double t : phaseTimes(mo.T_DS, rate))
     rows.push_back(
         toRow(mo.T_SS + t, Phase::DoubleSupport, detail::dsSample(m, ev.options(), mo, t)));
