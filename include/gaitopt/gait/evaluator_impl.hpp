@@ -80,14 +80,27 @@ Vector5<S> dsConfiguration(const Model& m, const S& alpha, const S& delta1, cons
 // Touchdown with impact (gait/impact_landing.hpp): the pre-impact slopes are parameters, the
 // impact's arrival, behaviour consistency and rate ratio are level-1 constraints, since the
 // step's boundary conditions (the next phase's initial slopes) depend on them.
-template <class S> void impactLandingStage(EvalContext<S>& c) {
+// When the touchdown configuration is out of reach (level 0 fails) the impact runs, as an
+// extension, on the rear leg stretched or folded to the reach limit along the hip–foot line,
+// so that the level-1 projection always has values.
+template <class S> void impactLandingStage(EvalContext<S>& c, const Vector2<S>& r_iDS, bool ids_ok) {
   constexpr double kArrivalMargin = 1e-3;  // V2z⁻ per unit rate [m/s per rad/s]
   const Parameterisation& par = c.options.parameterisation;
+  const GaitVector<S>& p = c.p;
   GaitMotion<S>& mo = c.out.motion;
+  Vector5<S> q = mo.q_fSS;
+  if (!ids_ok) {
+    using std::sqrt;
+    const double L = c.model.robot.l4 + c.model.robot.l5;
+    const S rho = sqrt(S(r_iDS.squaredNorm() + 1e-300));
+    const double lo = 1e-2 * L, hi = (1.0 - 1e-6) * L, v = valueOf(rho);
+    const S reach = v < lo ? S(lo) : v > hi ? S(hi) : rho;
+    const Vector2<S> r = r_iDS * S(reach / rho);
+    q = exchangeLegs(dsConfiguration(c.model, p(kAlphaIDS), p(kDelta1IDS), p(kTheta3IDS), r));
+  }
   const int i = par.impactSlopeIndex();
-  const Vector5<S> slopes(S(1.0), c.p(kDelta1sFSS), c.p(kDelta2sFSS), c.p(i), c.p(i + 1));
-  mo.landing = landingImpact(c.model, mo.q_fSS, slopes, par.landing,
-                             c.options.friction_coefficient);
+  const Vector5<S> slopes(S(1.0), p(kDelta1sFSS), p(kDelta2sFSS), p(i), p(i + 1));
+  mo.landing = landingImpact(c.model, q, slopes, par.landing, c.options.friction_coefficient);
   const ConstraintState st = c.stateAbove(0);
   c.set(kImpactArrival, 0, mo.landing.v2_minus(1) + kArrivalMargin, st);  // (2.2)
   std::vector<S> g;
@@ -137,7 +150,7 @@ template <class S> bool boundaryStage(EvalContext<S>& c) {
   c.set(kAlphaOrderSS, 0, mo.alpha_fSS - p(kAlphaFDS) + am, D);
   c.set(kTibiaFront, 0, p(kAlphaIDS) - 0.5 * M_PI + am, D);  // (3.40)
   c.set(kTibiaRear, 0, -0.5 * M_PI - mo.alpha_fSS + am, D);
-  if (ids_ok && par.landsWithImpact()) impactLandingStage(c);
+  if (par.landsWithImpact()) impactLandingStage(c, r_iDS, ids_ok);
   if (c.lowestViolated(1) >= 0) return false;
 
   mo.q_fDS = dsConfiguration(m, p(kAlphaFDS), p(kDelta1FDS), p(kTheta3FDS), r_fDS);
