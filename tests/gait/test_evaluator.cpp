@@ -25,6 +25,7 @@ using namespace gaitopt;
 using gaitopt::test::defaultGaitEvaluator;
 using gaitopt::test::checkGradient;
 using gaitopt::test::definedStep;
+using gaitopt::test::GradientCheck;
 using gaitopt::test::GradientOutput;
 
 namespace {
