@@ -3,7 +3,7 @@
 // and pre-impact floating states with foot 1 at rest.
 #include "gaitopt/gait/leg_geometry.hpp"
 #include "gaitopt/model/dynamics_floating.hpp"
-#include "gaitopt/model/dynamics_pinned.hpp"
+#include "gaitopt/impact/impact_map.hpp"
 
 namespace gaitopt::test {
 
@@ -32,10 +32,24 @@ inline FloatingState floatingState(const Model& m, const Vec5& q, const Vec5& qd
   return s;
 }
 
-// Pinned velocities giving foot 2 the velocity v2 (least-norm joint speeds, α̇ included).
-inline Vec5 pinnedVelocityForFoot2(const Model& m, const Vec5& q, const Vec2& v2) {
-  const PinnedTerms<double> t = pinnedTerms(m, q, Vec5(Vec5::Zero()));
-  return t.D2.transpose() * (t.D2 * t.D2.transpose()).ldlt().solve(v2);
+// A generic two-contact mechanical system (not RABBIT): mass matrix A = identity (7×7) and
+// contact Jacobian D = [L 0] (4×7), so W = L Lᵀ; foot 1 at rest, foot 2 arriving at angle theta.
+// Used where RABBIT has no known example (Appendix B's indeterminacy, an accumulation).
+inline ImpactSystem<double> genericSystem(const Eigen::Matrix4d& L, double theta) {
+  ImpactSystem<double> s;
+  s.A.setIdentity();
+  s.Ainv_Dt.setZero();
+  s.Ainv_Dt.topRows<4>() = L.transpose();
+  s.W = L * L.transpose();
+  s.V_minus << 0.0, 0.0, std::cos(theta), std::sin(theta);
+  s.Xd_minus.setZero();
+  s.Xd_minus.head<4>() = L.lu().solve(s.V_minus);
+  return s;
 }
+
+// The legs-spread configuration of §2.4.6 (Fig. 2.9, whose numbers are lost): rear leg 1
+// straight (δ1 = −π) inclined α = −1 rad, trunk horizontal pointing forward (θ3 = 0), feet
+// 1.10 m apart, which bends the impacting leg 2 (δ4 ≈ −98.8°).
+inline Vec5 legsSpreadQ(const Model& m) { return doubleSupportQ(m, -1.0, -M_PI, 0.0, 1.10); }
 
 }  // namespace gaitopt::test

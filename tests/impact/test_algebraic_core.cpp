@@ -27,7 +27,7 @@ TEST_CASE("algebraic core: impulse-momentum balance and behaviour equalities", "
   const Model m = test::defaultModel();
   const Vec5 q = test::walkingImpactQ(m);
   const test::FloatingState s =
-      test::floatingState(m, q, test::pinnedVelocityForFoot2(m, q, Vec2(0.3, -0.2)));
+      test::floatingState(m, q, pinnedVelocityForFoot2(m, q, Vec2(0.3, -0.2)));
   const FloatingTerms<double> t = floatingTerms(m, s.X, s.Xd);
   for (ImpactBehaviour b : allImpactBehaviours()) {
     const ImpactOutcome<double> o = algebraicImpact(m, s.X, s.Xd, b, 0.7);
@@ -55,7 +55,7 @@ TEST_CASE("algebraic core: AD derivatives match finite differences", "[impact]")
   const Model m = test::defaultModel();
   const Vec5 q = test::walkingImpactQ(m);
   const test::FloatingState s =
-      test::floatingState(m, q, test::pinnedVelocityForFoot2(m, q, Vec2(0.2, -0.3)));
+      test::floatingState(m, q, pinnedVelocityForFoot2(m, q, Vec2(0.2, -0.3)));
   for (ImpactBehaviour b : allImpactBehaviours()) {
     Vector7<AD> X, Xd;
     for (int i = 0; i < 7; ++i) {
