@@ -1,6 +1,9 @@
 #include "gaitopt/gait/impact_landing.hpp"
 
+#include <algorithm>
 #include <string>
+
+#include "gaitopt/impact/impact_solver.hpp"
 
 namespace gaitopt {
 
@@ -32,17 +35,21 @@ LandingReport landingReport(const LandingImpact<double>& li, Landing landing,
 }
 
 LandingSolutions landingSolutions(const Model& model, const LandingReport& report, double mu) {
-  // A slack counts as satisfied down to round-off of the impulses and velocities involved.
-  const double tol = 1e-9 * (1.0 + report.Xd_minus.norm()) * model.total_mass;
+  ImpactOptions options;
+  options.mu = mu;
   const ImpactSystem<double> sys = impactSystem(model, report.X, report.Xd_minus);
+  const ImpactResult algebraic = solveAlgebraicImpact(sys, options);
+  const ImpactResult differential = solveDifferentialImpact(sys, options);
   LandingSolutions r;
-  for (ImpactBehaviour b : allImpactBehaviours()) {
-    const ImpactOutcome<double> o = algebraicImpact(sys, b, mu);
-    if (!o.Xd_plus.allFinite() || o.slacks.minCoeff() < -tol) continue;
-    ++r.count;
-    r.required_found = r.required_found || b == report.behaviour;
-  }
-  r.status = r.count == 0 ? "inconsistent" : r.count > 1 ? "indeterminate" : "unique";
+  r.status = toString(algebraic.status);
+  r.count = static_cast<int>(algebraic.solutions.size());
+  for (const ImpactSolution& s : algebraic.solutions)
+    r.required_found = r.required_found || s.behaviour == report.behaviour;
+  r.differential_status = toString(differential.status);
+  r.differential_count = static_cast<int>(differential.solutions.size());
+  for (const ImpactSolution& s : differential.solutions)
+    r.differential_difference =
+        std::max(r.differential_difference, (s.Xd_plus - report.Xd_plus).cwiseAbs().maxCoeff());
   return r;
 }
 

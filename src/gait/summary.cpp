@@ -71,6 +71,11 @@ void writeImpactSummary(JsonWriter& w, const GaitEvaluator& ev, const GaitEvalua
   w.key("status").value(all.status);
   w.key("n_solutions").value(all.count);
   w.key("required_behaviour_consistent").value(all.required_found);
+  w.key("differential").beginObject();
+  w.key("status").value(all.differential_status);
+  w.key("n_solutions").value(all.differential_count);
+  w.key("max_Xd_plus_difference").value(all.differential_difference);
+  w.endObject();
   w.key("impulse_foot1");
   vectorValue(w, r.impulse1);
   w.key("impulse_foot2");

@@ -90,13 +90,17 @@ struct LandingReport {
 LandingReport landingReport(const LandingImpact<double>& li, Landing landing,
                             double alphadot_minus);
 
-// Every behaviour of Appendix C at the reported touchdown: the landing's requirement is a
-// unique solution, its own (status "unique"); otherwise "indeterminate" (several) or
-// "inconsistent" (none).
+// Both impact solvers (impact/impact_solver.hpp) at the reported touchdown. The landing
+// requires the algebraic model's status "unique" with its own behaviour; the differential
+// model (Keller's) is reported beside it, with the largest difference of its post-impact
+// velocities from the gait's [same units as Xd].
 struct LandingSolutions {
-  std::string status;
+  std::string status;  // unique | indeterminate | inconsistent
   int count = 0;
   bool required_found = false;
+  std::string differential_status;
+  int differential_count = 0;
+  double differential_difference = 0.0;
 };
 LandingSolutions landingSolutions(const Model& model, const LandingReport& report, double mu);
 
