@@ -17,5 +17,7 @@ void registerExportCommand(CLI::App& app, int& exit_code);
 void registerExportModelCommand(CLI::App& app, int& exit_code);
 void registerSimulateCommand(CLI::App& app, int& exit_code);
 void registerStabilityCommand(CLI::App& app, int& exit_code);
+void registerImpactCommand(CLI::App& app, int& exit_code);
+void registerImpactMapCommand(CLI::App& app, int& exit_code);
 
 }  // namespace gaitopt::cli

@@ -22,6 +22,8 @@ int main(int argc, char** argv) {
   gaitopt::cli::registerExportModelCommand(app, exit_code);
   gaitopt::cli::registerSimulateCommand(app, exit_code);
   gaitopt::cli::registerStabilityCommand(app, exit_code);
+  gaitopt::cli::registerImpactCommand(app, exit_code);
+  gaitopt::cli::registerImpactMapCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

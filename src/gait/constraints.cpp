@@ -1,9 +1,17 @@
 #include "gaitopt/gait/constraints.hpp"
 
+#include "gaitopt/gait/impact_landing.hpp"
+
 namespace gaitopt {
 
 ConstraintLayout::ConstraintLayout(const GaitOptions& o) {
-  const int ss = o.ss_nodes + 1, ds = o.ds_nodes + 1;
+  const int ss = o.ss_nodes + 1;
+  const Parameterisation& par = o.parameterisation;
+  const bool impact = par.landsWithImpact(), single = !par.hasDoubleSupport();
+  // Without DS the SS starts at the impact configuration: no DS groups, and the (α_fDS, …)
+  // configuration, equal to (α_iDS, …), is not checked twice.
+  const int ds = single ? 0 : o.ds_nodes + 1, dsb = single ? 0 : 1;
+  const int slacks = impact ? landingImpactSlackCount(par.landing) : 0;
   struct Spec {
     const char* name;
     int level;
@@ -13,18 +21,18 @@ ConstraintLayout::ConstraintLayout(const GaitOptions& o) {
   const Spec specs[kNumConstraintGroups] = {
       {"reach_max_iDS", 0, "(3.36)", 1},
       {"reach_min_iDS", 0, "(3.36)", 1},
-      {"reach_max_fDS", 0, "(3.36)", 1},
-      {"reach_min_fDS", 0, "(3.36)", 1},
+      {"reach_max_fDS", 0, "(3.36)", dsb},
+      {"reach_min_fDS", 0, "(3.36)", dsb},
       {"reach_max_int", 0, "(3.37)", 1},
       {"reach_min_int", 0, "(3.37)", 1},
-      {"alpha_order_DS", 1, "(3.38)", 1},
+      {"alpha_order_DS", 1, "(3.38)", dsb},
       {"alpha_order_fDS_fSS", 1, "(3.38)", 1},
       {"tibia_front", 1, "(3.40)", 1},
       {"tibia_rear", 1, "(3.40)", 1},
       {"f_positive", 2, "(3.45)", ss},
       {"alphadot_iSS_negative", 3, "(3.15)", 1},
       {"no_fall_back", 3, "(3.44), (3.55)", ss},
-      {"kappa_positive", 4, "(3.23)", 1},
+      {"kappa_positive", 4, "(3.23)", impact ? 0 : 1},
       {"ds_reach_max", 4, "(3.41)", ds},
       {"ds_reach_min", 4, "(3.41)", ds},
       {"torque_envelope_ss", 5, "(3.46), (3.47)", 8 * ss},
@@ -37,6 +45,10 @@ ConstraintLayout::ConstraintLayout(const GaitOptions& o) {
       {"friction_cone_ds", 5, "(3.48)", 4 * ds},
       {"normal_force_ds", 5, "(3.48)", 2 * ds},
       {"ds_monotone", 5, "(3.43)", ds},
+      {"impact_arrival", 1, "(2.2)", impact ? 1 : 0},
+      {"impact_consistency", 1, "(2.5), (2.9)-(2.12)", slacks},
+      {"impact_rate_ratio", 1, "(3.23)", impact ? 1 : 0},
+      {"impact_orbit", 3, "(3.14)", single ? 1 : 0},
   };
   for (const Spec& s : specs) {
     groups_.push_back({s.name, s.level, s.equation, size_, s.count});

@@ -33,6 +33,7 @@ GaitEvaluator::GaitEvaluator(const RobotParams& robot, const GaitOptions& option
       grids_(options) {
   if (options.parameterisation.ss_points < 1 || options.parameterisation.ss_points % 2 == 0 ||
       options.parameterisation.ds_points < 0 ||
+      (!options.parameterisation.hasDoubleSupport() && options.parameterisation.ds_points > 0) ||
       options.parameterisation.size() > kMaxGaitParameters)
     throw std::invalid_argument("unsupported parameterisation " +
                                 options.parameterisation.label());

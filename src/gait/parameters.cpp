@@ -35,6 +35,10 @@ std::vector<std::string> Parameterisation::names() const {
     n[dsPointIndex(k)] = "delta1" + at;
     n[dsPointIndex(k) + 1] = "theta3" + at;
   }
+  if (landsWithImpact()) {
+    n[impactSlopeIndex()] = "delta3s_fSS";
+    n[impactSlopeIndex() + 1] = "delta4s_fSS";
+  }
   return n;
 }
 
@@ -52,12 +56,28 @@ GaitParameters extendPerParameter(const GaitParameters& thesis17, const Paramete
     out(par.dsPointIndex(k)) = ds[0];
     out(par.dsPointIndex(k) + 1) = ds[1];
   }
+  if (par.landsWithImpact())
+    out.segment(par.impactSlopeIndex(), 2).setConstant(thesis17(kDelta1sFSS));
   return out;
 }
 
+bool Parameterisation::isUsed(int i) const {
+  if (landing != Landing::ImpactSingleSupport) return true;
+  switch (i) {
+    case kAlphaFDS: case kDelta1FDS: case kTheta3FDS: case kTDS:
+    case kAlphadotISS: case kDelta1sISS: case kDelta2sISS:
+      return false;
+    default: return true;
+  }
+}
+
 std::string Parameterisation::label() const {
-  if (isThesis()) return "miossec";
-  return "miossec+ss" + std::to_string(ss_points) + "+ds" + std::to_string(ds_points);
+  std::string s = "miossec";
+  if (ss_points != 1 || ds_points != 0)
+    s += "+ss" + std::to_string(ss_points) + "+ds" + std::to_string(ds_points);
+  if (landing == Landing::ImpactSingleSupport) s += "+impact_ss";
+  if (landing == Landing::ImpactDoubleSupport) s += "+impact_ds";
+  return s;
 }
 
 }  // namespace gaitopt

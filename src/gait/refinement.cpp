@@ -16,7 +16,8 @@ double trunkAngle(double alpha, double delta1, double delta2) {
 GaitParameters refineParameters(const GaitEvaluator& coarse, const GaitParameters& p,
                                 const Parameterisation& fine) {
   const Parameterisation& from = coarse.options().parameterisation;
-  if (fine.ss_points < from.ss_points || fine.ds_points < from.ds_points)
+  if (fine.ss_points < from.ss_points || fine.ds_points < from.ds_points ||
+      (from.landsWithImpact() && !fine.landsWithImpact()))
     throw std::invalid_argument("cannot refine " + from.label() + " into " + fine.label());
   const GaitEvaluation<double> e = coarse.evaluate(p);
   if (e.failed_level == 0 || e.failed_level == 1)
@@ -34,6 +35,10 @@ GaitParameters refineParameters(const GaitEvaluator& coarse, const GaitParameter
     }
     out.segment(fine.ssPointIndex(k), 4) << q(1), trunkAngle(q(0), q(1), q(2)), q(3), q(4);
   }
+  // A landing with impact keeps the SS-end slopes δ3*, δ4* of the path (a zero-velocity
+  // landing's are those of (3.20)).
+  if (fine.landsWithImpact())
+    for (int j = 0; j < 2; ++j) out(fine.impactSlopeIndex() + j) = mo.ss_path[j + 2](mo.alpha_fSS).first;
   for (int k = 0; k < fine.ds_points; ++k) {
     const double alpha = p(kAlphaIDS) + fine.dsFraction(k) * (p(kAlphaFDS) - p(kAlphaIDS));
     const double d1 = mo.ds_delta1(alpha).value, d2 = mo.ds_delta2(alpha).value;

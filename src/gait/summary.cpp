@@ -5,6 +5,8 @@
 #include <limits>
 #include <utility>
 
+#include "gaitopt/gait/impact_landing.hpp"
+
 namespace gaitopt {
 
 namespace {
@@ -26,6 +28,8 @@ const char* groupUnit(int id) {
     case kFrictionConeSS: case kFrictionConeDS: case kNormalForceSS: case kNormalForceDS:
       return "N";
     case kClearance: return "m";
+    case kImpactArrival: case kImpactConsistency: return "m/s per rad/s";
+    case kImpactRateRatio: case kImpactOrbit: return "1";
     default: return "";
   }
 }
@@ -36,6 +40,58 @@ void numberOrNull(JsonWriter& w, bool available, double v) {
   } else {
     w.null();
   }
+}
+
+void vectorValue(JsonWriter& w, const Eigen::Ref<const Eigen::VectorXd>& v) {
+  w.beginArray();
+  for (Eigen::Index i = 0; i < v.size(); ++i) w.value(v(i));
+  w.endArray();
+}
+
+// The touchdown impact at the step's pre-impact rate α̇_fSS; null members when the zero
+// dynamics did not run.
+void writeImpactSummary(JsonWriter& w, const GaitEvaluator& ev, const GaitEvaluation<double>& e) {
+  const Landing landing = ev.options().parameterisation.landing;
+  const ImpactBehaviour b = landingBehaviour(landing);
+  w.key("impact").beginObject();
+  w.key("model").value("algebraic");
+  w.key("after_impact").value(afterImpactName(landing));
+  w.key("behaviour").beginObject();
+  w.key("foot1").value(toString(b.foot1));
+  w.key("foot2").value(toString(b.foot2));
+  w.endObject();
+  const bool timing = zeroDynamicsComputed(ev, e);
+  if (!timing) {
+    w.key("status").null();
+    w.endObject();
+    return;
+  }
+  const LandingReport r = landingReport(e.motion.landing, landing, e.alphadot_fSS);
+  const LandingSolutions all = landingSolutions(ev.model(), r, ev.options().friction_coefficient);
+  w.key("status").value(all.status);
+  w.key("n_solutions").value(all.count);
+  w.key("required_behaviour_consistent").value(all.required_found);
+  w.key("differential").beginObject();
+  w.key("status").value(all.differential_status);
+  w.key("n_solutions").value(all.differential_count);
+  w.key("max_Xd_plus_difference").value(all.differential_difference);
+  w.endObject();
+  w.key("impulse_foot1");
+  vectorValue(w, r.impulse1);
+  w.key("impulse_foot2");
+  vectorValue(w, r.impulse2);
+  w.key("energy_loss").value(r.energy_loss);
+  w.key("energy_loss_per_metre").value(r.energy_loss / e.step_length);
+  w.key("alphadot_minus").value(r.alphadot_minus);
+  w.key("alphadot_plus").value(r.alphadot_plus);
+  w.key("rate_ratio").value(e.motion.landing.rate_ratio);
+  w.key("V2_minus");
+  vectorValue(w, r.v2_minus);
+  w.key("Xd_minus");
+  vectorValue(w, r.Xd_minus);
+  w.key("Xd_plus");
+  vectorValue(w, r.Xd_plus);
+  w.endObject();
 }
 
 }  // namespace
@@ -120,13 +176,16 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
   w.key("constraints").beginArray();
   for (int id = 0; id < static_cast<int>(ev.layout().groups().size()); ++id) {
     const ConstraintGroup& g = ev.layout()[id];
+    if (g.count == 0) continue;  // a group this gait family does not have
     const ConstraintGroupSummary s = summarizeConstraintGroup(g, e);
     const bool has_value = s.defined > 0 && std::isfinite(s.value);
     w.beginObject();
     w.key("name").value(g.name);
     w.key("level").value(g.level);
     w.key("equation").value(g.equation);
-    w.key("unit").value(groupUnit(id));
+    // Without DS, α̇_iSS² ≥ ε² is the constraint (gait/impact_landing.hpp).
+    const bool squared = id == kAlphadotNegative && !o.parameterisation.hasDoubleSupport();
+    w.key("unit").value(squared ? "(rad/s)^2" : groupUnit(id));
     w.key("value");
     numberOrNull(w, has_value, s.value);
     w.key("satisfied");
@@ -149,6 +208,8 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
   }
   w.endArray();
 
+  if (o.parameterisation.landsWithImpact()) writeImpactSummary(w, ev, e);
+
   w.key("options").beginObject();
   w.key("friction_coefficient").value(o.friction_coefficient);
   w.key("clearance_height").value(o.clearance_height);
@@ -167,6 +228,10 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
   w.key("joint_limit_margin").value(o.joint_limit_margin);
   w.key("full_torque_envelope").value(o.full_torque_envelope);
   w.key("target_speed").value(o.target_speed);
+  if (o.parameterisation.landsWithImpact()) {
+    w.key("landing").value("impact");
+    w.key("after_impact").value(afterImpactName(o.parameterisation.landing));
+  }
   const ModelOptions& mo = ev.model().options;
   w.key("rotor").value(mo.rotor == RotorModel::Exact ? "exact" : "high_gear");
   w.key("friction_smoothing").value(mo.friction_smoothing);
@@ -182,6 +247,8 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
   };
   w.key("units").beginObject();
   for (const auto& [key, unit] : kUnits) w.key(key).value(unit);
+  if (o.parameterisation.landsWithImpact())
+    w.key("impact").value("N s (impulses, world frame), J, J/m, rad/s, m/s; X = [q, x_t, z_t]");
   w.endObject();
 }
 

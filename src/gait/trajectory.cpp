@@ -46,6 +46,7 @@ std::vector<TrajectoryRow> sampleTrajectory(const GaitEvaluator& ev,
   std::vector<TrajectoryRow> rows;
   for (double t : phaseTimes(e.motion.T_SS, rate))
     rows.push_back(sampleTrajectoryAt(ev, e, Phase::SingleSupport, t));
+  if (!ev.options().parameterisation.hasDoubleSupport()) return rows;  // impact, then SS
   for (double t : phaseTimes(e.motion.T_DS, rate))
     rows.push_back(sampleTrajectoryAt(ev, e, Phase::DoubleSupport, t));
   return rows;

@@ -61,6 +61,19 @@ int choiceOr(const YamlMap& m, const std::string& key, const std::array<const ch
 
 const std::array<const char*, 2> kDsDistributions = {"torque", "energy"};
 const std::array<const char*, 2> kRotorModels = {"exact", "high_gear"};
+const std::array<const char*, 2> kLandings = {"zero_velocity", "impact"};
+const std::array<const char*, 2> kAfterImpact = {"single_support", "double_support"};
+
+// `landing` and `after_impact` (gait/impact_landing.hpp).
+Landing parseLanding(const YamlMap& m) {
+  const bool impact = choiceOr(m, "landing", kLandings) == 1;
+  if (!impact) {
+    if (m.has("after_impact")) throw m.error("after_impact", "needs 'landing: impact'");
+    return Landing::ZeroVelocity;
+  }
+  return choiceOr(m, "after_impact", kAfterImpact) == 1 ? Landing::ImpactDoubleSupport
+                                                        : Landing::ImpactSingleSupport;
+}
 
 // Plain YAML scalar when it is obviously safe (a path of letters, digits, '_', '-', '.',
 // '/', not starting with '-'), else a double-quoted one.
@@ -81,8 +94,9 @@ std::string yamlString(const std::string& s) {
 
 }  // namespace
 
-Parameterisation parseParameterisation(const YamlMap& doc) {
+Parameterisation parseParameterisation(const YamlMap& doc, Landing landing) {
   Parameterisation par;
+  par.landing = landing;
   if (!doc.has("parameterisation")) return par;
   if (!doc.hasMapping("parameterisation")) {
     const std::string v = doc.string("parameterisation");
@@ -106,6 +120,9 @@ Parameterisation parseParameterisation(const YamlMap& doc) {
   if (par.ss_points % 2 == 0)
     throw m.error("ss_points", "must be odd (the middle point is the thesis' alpha_int), got " +
                                    std::to_string(par.ss_points));
+  if (!par.hasDoubleSupport() && par.ds_points > 0)
+    throw m.error("ds_points", "must be 0 with 'after_impact: single_support' (no double "
+                               "support), got " + std::to_string(par.ds_points));
   if (par.size() > kMaxGaitParameters)
     throw m.error("ss_points", "gives " + std::to_string(par.size()) + " parameters, more than " +
                                    std::to_string(kMaxGaitParameters));
@@ -151,6 +168,7 @@ GaitOptions parseGaitOptions(const YamlMap& m, ModelOptions& model_options) {
   o.joint_limit_margin = nonNegativeOr(m, "joint_limit_margin", o.joint_limit_margin);
   o.full_torque_envelope = booleanOr(m, "full_torque_envelope", o.full_torque_envelope);
   o.target_speed = nonNegativeOr(m, "target_speed", o.target_speed);
+  o.parameterisation.landing = parseLanding(m);
   if (const int k = choiceOr(m, "rotor", kRotorModels); k >= 0) {
     model_options.rotor = k == 0 ? RotorModel::Exact : RotorModel::HighGear;
   }
@@ -167,11 +185,11 @@ GaitFile loadGaitFile(const std::string& path) {
   const std::string robot = doc.string("robot");
   if (robot.empty()) throw doc.error("robot", "must name the robot description file");
   g.robot_path = resolveAgainstFile(path, robot);  // against the gait file's directory
-  const Parameterisation par = parseParameterisation(doc);
-  g.parameters = parseGaitParameters(doc.map("parameters"), par);
   if (const std::optional<YamlMap> options = doc.optionalMap("options")) {
     g.options = parseGaitOptions(*options, g.model_options);
   }
+  const Parameterisation par = parseParameterisation(doc, g.options.parameterisation.landing);
+  g.parameters = parseGaitParameters(doc.map("parameters"), par);
   g.options.parameterisation = par;
   doc.rejectUnknownKeys();
 
@@ -208,6 +226,10 @@ std::string gaitOptionsYaml(const GaitOptions& o, const ModelOptions& mo, int in
   num("joint_limit_margin", o.joint_limit_margin);
   flag("full_torque_envelope", o.full_torque_envelope);
   num("target_speed", o.target_speed);
+  if (o.parameterisation.landsWithImpact()) {
+    text("landing", kLandings[1]);
+    text("after_impact", kAfterImpact[o.parameterisation.hasDoubleSupport() ? 1 : 0]);
+  }
   text("rotor", kRotorModels[mo.rotor == RotorModel::Exact ? 0 : 1]);
   num("friction_smoothing", mo.friction_smoothing);
   return out.str();

@@ -116,7 +116,7 @@ OptimizeConfig loadOptimizeConfig(const std::string& path) {
   }
   c.options.target_speed = c.speed.value_or(0.0);
 
-  c.options.parameterisation = parseParameterisation(doc);
+  c.options.parameterisation = parseParameterisation(doc, c.options.parameterisation.landing);
   c.parameterisation = c.options.parameterisation.label();
 
   std::string initial = "default";

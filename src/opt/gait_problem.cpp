@@ -180,6 +180,9 @@ VariableSet gaitVariables(const Model& m, const GaitParameters& initial,
   v.lower = extendPerParameter(lo, par, {-M_PI, jl.knee_min}, {jl.knee_min, up - 1.0});
   v.upper = extendPerParameter(hi, par, {M_PI, jl.knee_max}, {jl.knee_max, up + 1.0});
   v.initial = initial.cwiseMax(v.lower).cwiseMin(v.upper);
+  // Entries the gait family determines (impact then single support) stay where they are.
+  for (int i = 0; i < par.size(); ++i)
+    if (!par.isUsed(i)) v.lower(i) = v.upper(i) = v.initial(i) = initial(i);
   return v;
 }
 

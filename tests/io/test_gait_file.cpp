@@ -390,6 +390,7 @@ TEST_CASE("summary constraint groups: worst Defined value, counts and max_violat
   double worst = 0.0;
   int violated = 0;
   for (const auto& group : ev.layout().groups()) {
+    if (group.count == 0) continue;  // a group of another gait family (impact landing)
     const auto s = gaitopt::summarizeConstraintGroup(group, e);
     CHECK(s.defined == group.count);  // a defined step: every entry is Defined
     double expected = -INFINITY;

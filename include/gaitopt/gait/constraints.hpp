@@ -2,7 +2,9 @@
 // The named constraints of a walking step (§3.2.3), their hierarchy level (Fig. 3.2 as
 // reconstructed in digest §3.8) and their place in the flat constraint vector. Every value is
 // written g ≤ 0 when satisfied. Phase-wise (semi-infinite) constraints have one entry per node
-// of the phase's Chebyshev grid, so the optimiser sees a smooth, fixed-size set.
+// of the phase's Chebyshev grid, so the optimiser sees a smooth, fixed-size set. A group a
+// gait family does not have (the DS of an impact followed by single support, the impact of
+// the thesis' landing) has count 0.
 #include <string>
 #include <vector>
 
@@ -18,6 +20,8 @@ enum ConstraintGroupId : int {
   kKappaPositive, kDsReachMax, kDsReachMin,                                           // level 4
   kTorqueSS, kJointLimitsSS, kFrictionConeSS, kNormalForceSS, kClearance,             // level 5
   kTorqueDS, kJointLimitsDS, kFrictionConeDS, kNormalForceDS, kDsMonotone,
+  // Landing with an impact (gait/impact_landing.hpp): level 1, and level 3 for the orbit.
+  kImpactArrival, kImpactConsistency, kImpactRateRatio, kImpactOrbit,
   kNumConstraintGroups
 };
 
@@ -45,6 +49,7 @@ class ConstraintLayout {
   const ConstraintGroup& operator[](int id) const { return groups_[id]; }
   int size() const { return size_; }
   int levelOf(int entry) const;
+  bool has(int group) const { return groups_[group].count > 0; }
 
  private:
   std::vector<ConstraintGroup> groups_;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gaitopt/gait/constraints.hpp"
+#include "gaitopt/gait/impact_landing.hpp"
 #include "gaitopt/gait/polynomials.hpp"
 #include "gaitopt/math/types.hpp"
 
@@ -25,6 +26,7 @@ template <class S> struct GaitMotion {
   S alphadot_fSS = S(0.0), kappa = S(0.0);
   Eigen::Matrix<S, Eigen::Dynamic, 1> ss_phi, ss_time;  // Φ and t at the SS nodes
   Eigen::Matrix<S, Eigen::Dynamic, 1> ss_alphadot, ss_alphaddot;  // (3.15), (3.16) there
+  LandingImpact<S> landing;  // a landing with impact only
 };
 
 // Double-support quadrature pieces, split where the force-distribution branch changes; each

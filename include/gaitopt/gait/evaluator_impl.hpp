@@ -10,6 +10,7 @@
 #include "gaitopt/math/chebyshev.hpp"
 #include "gaitopt/gait/ds_force_distribution.hpp"
 #include "gaitopt/gait/evaluation.hpp"
+#include "gaitopt/gait/impact_landing.hpp"
 #include "gaitopt/gait/options.hpp"
 #include "gaitopt/gait/parameters.hpp"
 #include "gaitopt/model/inverse_dynamics.hpp"
@@ -76,6 +77,38 @@ Vector5<S> dsConfiguration(const Model& m, const S& alpha, const S& delta1, cons
   return Vector5<S>(alpha, delta1, delta2FromTheta3(alpha, delta1, theta3), leg2(0), leg2(1));
 }
 
+// Touchdown with impact (gait/impact_landing.hpp): the pre-impact slopes are parameters, the
+// impact's arrival, behaviour consistency and rate ratio are level-1 constraints, since the
+// step's boundary conditions (the next phase's initial slopes) depend on them.
+// When the touchdown configuration is out of reach (level 0 fails) the impact runs, as an
+// extension, on the rear leg stretched or folded to the reach limit along the hip–foot line,
+// so that the level-1 projection always has values.
+template <class S> void impactLandingStage(EvalContext<S>& c, const Vector2<S>& r_iDS, bool ids_ok) {
+  constexpr double kArrivalMargin = 1e-3;  // V2z⁻ per unit rate [m/s per rad/s]
+  const Parameterisation& par = c.options.parameterisation;
+  const GaitVector<S>& p = c.p;
+  GaitMotion<S>& mo = c.out.motion;
+  Vector5<S> q = mo.q_fSS;
+  if (!ids_ok) {
+    using std::sqrt;
+    const double L = c.model.robot.l4 + c.model.robot.l5;
+    const S rho = sqrt(S(r_iDS.squaredNorm() + 1e-300));
+    const double lo = 1e-2 * L, hi = (1.0 - 1e-6) * L, v = valueOf(rho);
+    const S reach = v < lo ? S(lo) : v > hi ? S(hi) : rho;
+    const Vector2<S> r = r_iDS * S(reach / rho);
+    q = exchangeLegs(dsConfiguration(c.model, p(kAlphaIDS), p(kDelta1IDS), p(kTheta3IDS), r));
+  }
+  const int i = par.impactSlopeIndex();
+  const Vector5<S> slopes(S(1.0), p(kDelta1sFSS), p(kDelta2sFSS), p(i), p(i + 1));
+  mo.landing = landingImpact(c.model, q, slopes, par.landing, c.options.friction_coefficient);
+  const ConstraintState st = c.stateAbove(0);
+  c.set(kImpactArrival, 0, mo.landing.v2_minus(1) + kArrivalMargin, st);  // (2.2)
+  std::vector<S> g;
+  landingConsistency(c.model, mo.landing, par.landing, g);
+  for (std::size_t k = 0; k < g.size(); ++k) c.set(kImpactConsistency, static_cast<int>(k), g[k], st);
+  c.set(kImpactRateRatio, 0, c.options.kappa_min - mo.landing.rate_ratio, st);
+}
+
 template <class S> bool boundaryStage(EvalContext<S>& c) {
   const GaitVector<S>& p = c.p;
   const Model& m = c.model;
@@ -86,7 +119,7 @@ template <class S> bool boundaryStage(EvalContext<S>& c) {
   const Vector2<S> r_iDS = rearFootFromHip(m, p(kAlphaIDS), p(kDelta1IDS), mo.d);
   const Vector2<S> r_fDS = rearFootFromHip(m, p(kAlphaFDS), p(kDelta1FDS), mo.d);
   setReach(c, kReachMaxIDS, r_iDS, D);
-  setReach(c, kReachMaxFDS, r_fDS, D);
+  if (c.layout.has(kReachMaxFDS)) setReach(c, kReachMaxFDS, r_fDS, D);
 
   const double L = m.robot.l4 + m.robot.l5;
   const bool ids_ok = valueOf(r_iDS.squaredNorm()) < L * L && valueOf(r_iDS.squaredNorm()) > 0.0;
@@ -112,10 +145,12 @@ template <class S> bool boundaryStage(EvalContext<S>& c) {
     setReach(c, kReachMaxInt, r_int, D);
   }
   const double am = c.options.angle_margin;
-  c.set(kAlphaOrderDS, 0, p(kAlphaFDS) - p(kAlphaIDS) + c.options.ds_alpha_range_min, D);  // (3.38)
+  if (c.layout.has(kAlphaOrderDS))
+    c.set(kAlphaOrderDS, 0, p(kAlphaFDS) - p(kAlphaIDS) + c.options.ds_alpha_range_min, D);  // (3.38)
   c.set(kAlphaOrderSS, 0, mo.alpha_fSS - p(kAlphaFDS) + am, D);
   c.set(kTibiaFront, 0, p(kAlphaIDS) - 0.5 * M_PI + am, D);  // (3.40)
   c.set(kTibiaRear, 0, -0.5 * M_PI - mo.alpha_fSS + am, D);
+  if (par.landsWithImpact()) impactLandingStage(c, r_iDS, ids_ok);
   if (c.lowestViolated(1) >= 0) return false;
 
   mo.q_fDS = dsConfiguration(m, p(kAlphaFDS), p(kDelta1FDS), p(kTheta3FDS), r_fDS);
@@ -144,8 +179,11 @@ Vector5<S> liftOffSlopes(const Model& m, const Vector5<S>& q, const S& d1s, cons
 template <class S> void buildSsPaths(EvalContext<S>& c, Vector5<S>& qs_iSS, Vector5<S>& qs_fSS) {
   const GaitVector<S>& p = c.p;
   GaitMotion<S>& mo = c.out.motion;
-  qs_iSS = liftOffSlopes(c.model, mo.q_iSS, p(kDelta1sISS), p(kDelta2sISS));
-  qs_fSS = liftOffSlopes(c.model, mo.q_fSS, p(kDelta1sFSS), p(kDelta2sFSS));
+  const Parameterisation& par = c.options.parameterisation;
+  qs_iSS = par.hasDoubleSupport() ? liftOffSlopes(c.model, mo.q_iSS, p(kDelta1sISS), p(kDelta2sISS))
+                                  : mo.landing.slopes_after;  // post-impact start
+  qs_fSS = par.landsWithImpact() ? mo.landing.slopes_before
+                                 : liftOffSlopes(c.model, mo.q_fSS, p(kDelta1sFSS), p(kDelta2sFSS));
   std::vector<S> alphas;
   for (const Vector5<S>& q : mo.q_ss_points) alphas.push_back(q(0));
   for (int j = 0; j < 4; ++j) {  // (3.25), or higher degree with more interior points
@@ -207,6 +245,26 @@ void zeroDynamicsRates(const SsPathPoint<S>& pt, const S& phi, const GaitMotion<
   alphaddot = -(pt.G(0) + pt.tau_c(0) * alphadot * alphadot) / f;
 }
 
+// Start rate of an SS that follows an impact directly. The zero dynamics conserve σ² − Φ with
+// σ = f α̇ (3.14), the impact maps α̇_fSS to λ α̇_fSS, so σ_i = r σ_f with r = f_i λ / f_f and
+// σ_f² = σ_i² + Φ_f: the cyclic motion has σ_i² = r² Φ_f / (1 − r²). Requires r² < 1 (the
+// orbit of the zero dynamics is then attractive, as for the HZD walkers) and α̇_i² ≥ ε², the
+// latter multiplied by 1 − r² so that its value stays finite as r² → 1.
+template <class S>
+S cyclicStartRate(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts, ConstraintState st) {
+  using std::sqrt;
+  constexpr double kOrbitMargin = 1e-3;
+  const GaitMotion<S>& mo = c.out.motion;
+  const S f_f = saturatedF(S(pts.back().tau_a(0)), c.options.f_min);
+  const S r2 = squared(S(mo.f_iSS * mo.landing.rate_ratio / f_f));
+  const S phi_f = mo.ss_phi(mo.ss_phi.size() - 1);
+  c.set(kImpactOrbit, 0, r2 - (1.0 - kOrbitMargin), st);
+  c.set(kAlphadotNegative, 0,
+        squared(c.options.alphadot_margin) * (1.0 - r2) - r2 * phi_f / squared(mo.f_iSS), st);
+  const S sigma2 = valueOf(r2) < 1.0 ? S(r2 * phi_f / (1.0 - r2)) : S(0.0);
+  return valueOf(sigma2) > 0.0 ? S(-sqrt(sigma2) / mo.f_iSS) : S(0.0);
+}
+
 template <class S> void zeroDynamicsStage(EvalContext<S>& c, std::vector<SsPathPoint<S>>& pts) {
   using std::sqrt;
   const GaitOptions& o = c.options;
@@ -225,9 +283,10 @@ template <class S> void zeroDynamicsStage(EvalContext<S>& c, std::vector<SsPathP
   mo.ss_phi = cumulativeOverInterval(c.ss_grid, dphi, mo.alpha_iSS, mo.alpha_fSS);
   mo.f_iSS = saturatedF(S(pts[0].tau_a(0)), o.f_min);
 
-  const S a_i = c.p(kAlphadotISS);
   const ConstraintState st3 = c.stateAbove(2);
-  c.set(kAlphadotNegative, 0, a_i + o.alphadot_margin, st3);
+  const bool cyclic_ss = !o.parameterisation.hasDoubleSupport();
+  const S a_i = cyclic_ss ? cyclicStartRate(c, pts, st3) : c.p(kAlphadotISS);
+  if (!cyclic_ss) c.set(kAlphadotNegative, 0, a_i + o.alphadot_margin, st3);
   int worst = 0;
   for (int k = 0; k < n; ++k) {
     // (3.55) divided by f_i²: a margin ε² on σ²/f_i².
@@ -256,12 +315,21 @@ template <class S> void dsBoundaryStage(EvalContext<S>& c, const Vector5<S>& qs_
                                         const Vector5<S>& qs_fSS) {
   GaitMotion<S>& mo = c.out.motion;
   const GaitVector<S>& p = c.p;
-  mo.kappa = 1.0 + qs_fSS(1) + qs_fSS(3) - qs_fSS(4);
-  c.set(kKappaPositive, 0, c.options.kappa_min - mo.kappa, c.stateAbove(3));
-  const S kappa = valueOf(mo.kappa) > c.options.kappa_min ? mo.kappa : S(c.options.kappa_min);
-  const S alphadot_iDS = kappa * mo.alphadot_fSS;
-  const S d1s_iDS = qs_fSS(4) / kappa, d2s_iDS = (qs_fSS(2) + qs_fSS(3)) / kappa;
   const Parameterisation& par = c.options.parameterisation;
+  S alphadot_iDS, d1s_iDS, d2s_iDS;
+  if (par.landsWithImpact()) {  // the DS starts with the post-impact velocity
+    mo.kappa = mo.landing.rate_ratio;
+    alphadot_iDS = mo.kappa * mo.alphadot_fSS;
+    d1s_iDS = mo.landing.slopes_after(1);
+    d2s_iDS = mo.landing.slopes_after(2);
+  } else {
+    mo.kappa = 1.0 + qs_fSS(1) + qs_fSS(3) - qs_fSS(4);
+    c.set(kKappaPositive, 0, c.options.kappa_min - mo.kappa, c.stateAbove(3));
+    const S kappa = valueOf(mo.kappa) > c.options.kappa_min ? mo.kappa : S(c.options.kappa_min);
+    alphadot_iDS = kappa * mo.alphadot_fSS;
+    d1s_iDS = qs_fSS(4) / kappa;
+    d2s_iDS = (qs_fSS(2) + qs_fSS(3)) / kappa;
+  }
   std::vector<S> alphas, d1, d2;
   for (int k = 0; k < par.ds_points; ++k) {
     const int i = par.dsPointIndex(k);
@@ -535,27 +603,13 @@ std::array<S, 4> integrateDsPiecewise(EvalContext<S>& c, const DsPieces& pieces)
   return total;
 }
 
-template <class S>
-void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
+// Level-5 constraints of the DS and its integrals of the criteria integrands.
+template <class S> std::array<S, 4> dsMotionStage(EvalContext<S>& c, ConstraintState st) {
   GaitMotion<S>& mo = c.out.motion;
   const GaitOptions& o = c.options;
-  const ConstraintState st = c.stateAbove(4);
-  const int nss = c.ss_grid.size(), nds = c.ds_grid.size();
-  std::array<Eigen::Matrix<S, Eigen::Dynamic, 1>, 4> ss_int, ds_int;
-  for (auto& v : ss_int) v.resize(nss);
+  const int nds = c.ds_grid.size();
+  std::array<Eigen::Matrix<S, Eigen::Dynamic, 1>, 4> ds_int;
   for (auto& v : ds_int) v.resize(nds);
-  for (int k = 0; k < nss; ++k) {
-    const S& ad = mo.ss_alphadot(k);
-    const PhaseSample<S> s = ssSample(c.model, pts[k], ad, mo.ss_alphaddot(k));
-    setPhaseConstraints(c, kTorqueSS, kJointLimitsSS, k, s, st);
-    setContactConstraints(c, kFrictionConeSS, kNormalForceSS, 0, 1, k, s.R1, st);
-    if (k > 0 && k < nss - 1) {  // (3.49) on the open interval (gap #16)
-      const S x = s.foot2(0) / mo.d;
-      c.set(kClearance, k - 1, -(s.foot2(1) - o.clearance_height * (1.0 - x * x)), st);
-    }
-    const std::array<S, 4> in = criteriaIntegrands(c.model, s);
-    for (int i = 0; i < 4; ++i) ss_int[i](k) = in[i] / ad;  // dt = dα / α̇ (3.29)
-  }
   const auto ts = mappedNodes(c.ds_grid, S(0.0), mo.T_DS);
   std::vector<std::array<double, 6>> switching(nds);
   std::vector<int> branch(nds);
@@ -571,9 +625,33 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
     for (int i = 0; i < 4; ++i) ds_int[i](k) = in[i];
   }
   c.out.ds_pieces = c.known_pieces ? *c.known_pieces : dsPieces(c, ts, branch, switching);
-  const std::array<S, 4> ds_total = c.out.ds_pieces.switch_times.empty()
-                                        ? integrateEach(c.ds_grid, ds_int, S(0.0), mo.T_DS)
-                                        : integrateDsPiecewise(c, c.out.ds_pieces);
+  return c.out.ds_pieces.switch_times.empty() ? integrateEach(c.ds_grid, ds_int, S(0.0), mo.T_DS)
+                                              : integrateDsPiecewise(c, c.out.ds_pieces);
+}
+
+template <class S>
+void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
+  GaitMotion<S>& mo = c.out.motion;
+  const GaitOptions& o = c.options;
+  const ConstraintState st = c.stateAbove(4);
+  const int nss = c.ss_grid.size();
+  std::array<Eigen::Matrix<S, Eigen::Dynamic, 1>, 4> ss_int;
+  for (auto& v : ss_int) v.resize(nss);
+  for (int k = 0; k < nss; ++k) {
+    const S& ad = mo.ss_alphadot(k);
+    const PhaseSample<S> s = ssSample(c.model, pts[k], ad, mo.ss_alphaddot(k));
+    setPhaseConstraints(c, kTorqueSS, kJointLimitsSS, k, s, st);
+    setContactConstraints(c, kFrictionConeSS, kNormalForceSS, 0, 1, k, s.R1, st);
+    if (k > 0 && k < nss - 1) {  // (3.49) on the open interval (gap #16)
+      const S x = s.foot2(0) / mo.d;
+      c.set(kClearance, k - 1, -(s.foot2(1) - o.clearance_height * (1.0 - x * x)), st);
+    }
+    const std::array<S, 4> in = criteriaIntegrands(c.model, s);
+    for (int i = 0; i < 4; ++i) ss_int[i](k) = in[i] / ad;  // dt = dα / α̇ (3.29)
+  }
+  // Without DS the impact's energy loss is resupplied by the motors within the SS (cyclicity).
+  std::array<S, 4> ds_total{S(0.0), S(0.0), S(0.0), S(0.0)};
+  if (o.parameterisation.hasDoubleSupport()) ds_total = dsMotionStage(c, st);
   std::array<S, 4> crit;
   for (int i = 0; i < 4; ++i)
     crit[i] = (integrateOverInterval(c.ss_grid, ss_int[i], mo.alpha_iSS, mo.alpha_fSS) +
@@ -620,21 +698,23 @@ void evaluateGaitImpl(const Model& model, const GaitOptions& options,
   out = GaitEvaluation<S>();
   out.g.assign(layout.size(), S(0.0));
   out.state.assign(layout.size(), ConstraintState::NotComputed);
+  const GaitVector<S> pe = landingParameters(p, options.parameterisation);
   EvalContext<S> c{model,   options, layout, grids.ss, grids.ds, grids.ds_piece,
-                   p,       out,     known_pieces};
+                   pe,      out,     known_pieces};
   const bool boundary_ok = boundaryStage(c);
-  out.step_length = p(kStepLength);
-  out.T_DS = p(kTDS);
+  const bool ds = options.parameterisation.hasDoubleSupport();
+  out.step_length = pe(kStepLength);
+  out.T_DS = pe(kTDS);
   if (boundary_ok) {
     Vector5<S> qs_iSS, qs_fSS;
     buildSsPaths(c, qs_iSS, qs_fSS);
     std::vector<SsPathPoint<S>> pts;
     zeroDynamicsStage(c, pts);
-    dsBoundaryStage(c, qs_iSS, qs_fSS);
+    if (ds) dsBoundaryStage(c, qs_iSS, qs_fSS);
     out.T_SS = out.motion.T_SS;
     out.alphadot_fSS = out.motion.alphadot_fSS;
     out.speed = out.step_length / (out.T_SS + out.T_DS);  // (3.50)
-    if (dsReachStage(c)) motionStage(c, pts);
+    if (!ds || dsReachStage(c)) motionStage(c, pts);
   }
   out.failed_level = c.lowestViolated(5);
   if (!allFinite(out)) discardNonFiniteMotion(c);

@@ -7,6 +7,7 @@
 // range) the DS polynomials' degree (gait/polynomials.hpp). Extra SS points carry joint angles
 // (δ1, θ3, δ3, δ4) rather than the α_int point's swing-foot position, so they need no inverse
 // kinematics and any step refines into them exactly (a foot position loses the knee branch).
+// A gait landing with an impact appends the two SS-end slopes δ3*, δ4* (gait/impact_landing.hpp).
 #include <Eigen/Core>
 #include <array>
 #include <string>
@@ -39,6 +40,13 @@ enum GaitParameter : int {
 
 extern const std::array<const char*, kNumGaitParameters> kGaitParameterNames;
 
+// How the swing foot lands at the end of the single support.
+enum class Landing {
+  ZeroVelocity,           // the thesis: δ3*, δ4* at SS end from zero foot-2 velocity (3.20)
+  ImpactSingleSupport,    // impact, then single support on the new leg (foot 1 lifts)
+  ImpactDoubleSupport,    // impact, then double support (both feet stick)
+};
+
 struct Parameterisation {
   // Interior SS configurations at α fractions k/(ss_points+1) of [α_iSS → α_fSS]; odd, so the
   // middle one is the thesis' α_int (parameters 7–10). 1 = the thesis (quartics).
@@ -46,9 +54,20 @@ struct Parameterisation {
   // Interior DS configurations at α fractions k/(ds_points+1) of [α_iDS → α_fDS]; 0 = the
   // thesis (cubics).
   int ds_points = 0;
+  Landing landing = Landing::ZeroVelocity;
 
-  int size() const { return kNumGaitParameters + 4 * (ss_points - 1) + 2 * ds_points; }
-  bool isThesis() const { return ss_points == 1 && ds_points == 0; }
+  int size() const { return impactSlopeIndex() + (landsWithImpact() ? 2 : 0); }
+  bool isThesis() const { return ss_points == 1 && ds_points == 0 && !landsWithImpact(); }
+  bool landsWithImpact() const { return landing != Landing::ZeroVelocity; }
+  bool hasDoubleSupport() const { return landing != Landing::ImpactSingleSupport; }
+  // First of the SS-end slopes δ3*, δ4* of a landing with impact (free: the foot arrives
+  // with a non-zero velocity).
+  int impactSlopeIndex() const { return kNumGaitParameters + 4 * (ss_points - 1) + 2 * ds_points; }
+  // Whether parameter i enters the evaluation. An impact followed by single support has no
+  // double support: the SS starts at the post-impact configuration (α_iDS, δ1_iDS, θ3_iDS)
+  // with the post-impact velocity, so α_fDS, δ1_fDS, θ3_fDS, T_DS, α̇_iSS, δ1*_iSS and δ2*_iSS
+  // are determined by the impact and cyclicity, not free.
+  bool isUsed(int i) const;
   double ssFraction(int k) const { return (k + 1.0) / (ss_points + 1.0); }
   double dsFraction(int k) const { return (k + 1.0) / (ds_points + 1.0); }
   // First of the 4 parameters of SS point k (0 ≤ k < ss_points): (δ1, θ3, x2r, z2) for the
@@ -58,9 +77,9 @@ struct Parameterisation {
   // First of the 2 parameters (δ1, θ3) of DS point k.
   int dsPointIndex(int k) const;
   std::vector<std::string> names() const;
-  std::string label() const;  // "miossec", or "miossec+ss3+ds1"
+  std::string label() const;  // "miossec", "miossec+ss3+ds1", "miossec+impact_ss"
   bool operator==(const Parameterisation& o) const {
-    return ss_points == o.ss_points && ds_points == o.ds_points;
+    return ss_points == o.ss_points && ds_points == o.ds_points && landing == o.landing;
   }
 };
 

@@ -35,8 +35,10 @@ struct GaitFile {
 GaitFile loadGaitFile(const std::string& path);
 
 // The `parameterisation` key of `doc`: absent or "miossec" (the thesis' 17 parameters), or a
-// mapping {ss_points: odd ≥ 1, ds_points: ≥ 0} of interior SS/DS configurations.
-Parameterisation parseParameterisation(const YamlMap& doc);
+// mapping {ss_points: odd ≥ 1, ds_points: ≥ 0} of interior SS/DS configurations; `landing`
+// comes from the options (`landing: impact`, `after_impact: single_support|double_support`).
+Parameterisation parseParameterisation(const YamlMap& doc,
+                                       Landing landing = Landing::ZeroVelocity);
 
 // The parameters of `parameters_map`, named by `par.names()` (each required, plain finite
 // numbers; d and T_DS > 0). Unknown keys are rejected.

@@ -1,0 +1,112 @@
+// `gaitopt impact-map`: behaviour of the impact over the direction θ of the arriving foot
+// velocity and the friction coefficient μ → DIR/map.csv (and DIR/intervals.csv, algebraic).
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "gaitopt/impact/impact_map.hpp"
+#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/robot_file.hpp"
+#include "impact_input.hpp"
+
+namespace gaitopt::cli {
+namespace {
+
+struct ImpactMapArgs {
+  std::string robot = "configs/robot/rabbit_miossec.yaml";
+  std::string q;
+  std::string mu_range = "0:1.5:31", theta_range = "-180:0:181";
+  std::string model = "algebraic";
+  std::string out;
+};
+
+constexpr double kDeg = M_PI / 180.0;
+
+std::string labels(const std::vector<ImpactBehaviour>& behaviours) {
+  if (behaviours.empty()) return "none";
+  std::string s;
+  for (ImpactBehaviour b : behaviours) s += (s.empty() ? "" : "|") + behaviourLabel(b);
+  return s;
+}
+
+std::string mapCsv(const std::vector<ImpactMapRow>& rows) {
+  std::ostringstream out;
+  out << "theta_deg,mu,behaviour,n_solutions,status\n";
+  for (const ImpactMapRow& r : rows)
+    out << shortNumber(r.theta / kDeg, "%.10g") << "," << shortNumber(r.mu, "%.10g") << ","
+        << labels(r.behaviours) << "," << r.behaviours.size() << "," << toString(r.status)
+        << "\n";
+  return out.str();
+}
+
+std::string intervalsCsv(const Model& model, const Vec5& q, const ImpactMapRequest& req) {
+  std::ostringstream out;
+  out << "mu,behaviour,theta_begin_deg,theta_end_deg\n";
+  for (int i = 0; i < req.mu_count; ++i) {
+    const double mu = req.mu_count <= 1 ? req.mu_min
+                                        : req.mu_min + (req.mu_max - req.mu_min) * i /
+                                                           static_cast<double>(req.mu_count - 1);
+    for (const ThetaInterval& iv :
+         algebraicThetaIntervals(model, q, mu, req.theta_min, req.theta_max))
+      out << shortNumber(mu, "%.10g") << "," << behaviourLabel(iv.behaviour) << ","
+          << shortNumber(iv.begin / kDeg, "%.12g") << "," << shortNumber(iv.end / kDeg, "%.12g")
+          << "\n";
+  }
+  return out.str();
+}
+
+int runImpactMap(const ImpactMapArgs& args) {
+  const Model model = buildModel(loadRobot(args.robot));
+  const std::vector<double> qv = parseNumberList("--q", args.q, 5);
+  const Vec5 q(Eigen::Map<const Vec5>(qv.data()));
+  const SampleRange mu = parseSampleRange("--mu-range", args.mu_range);
+  const SampleRange theta = parseSampleRange("--theta-range", args.theta_range);
+  requireFriction("--mu-range", std::min(mu.a, mu.b));
+  requireFoot2OnGround(model, q);
+  requireDirectoryOrAbsent(args.out);
+  ImpactMapRequest req;
+  req.model = parseImpactModel(args.model);
+  req.mu_min = mu.a;
+  req.mu_max = mu.b;
+  req.mu_count = mu.n;
+  req.theta_min = theta.a * kDeg;
+  req.theta_max = theta.b * kDeg;
+  req.theta_count = theta.n;
+  const std::string map = mapCsv(impactMap(model, q, req));
+  std::filesystem::create_directories(args.out);
+  writeFileAtomically(args.out + "/map.csv", map);
+  if (req.model == ImpactModelKind::Algebraic)
+    writeFileAtomically(args.out + "/intervals.csv", intervalsCsv(model, q, req));
+  return 0;
+}
+
+}  // namespace
+
+void registerImpactMapCommand(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<ImpactMapArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "impact-map",
+      "Impact behaviour over the arriving-velocity direction theta (V2- = (cos, sin)) and the "
+      "friction coefficient: writes DIR/map.csv (and DIR/intervals.csv with the exact "
+      "theta-intervals for the algebraic model).");
+  cmd->add_option("--robot", args->robot, "Robot description YAML file")
+      ->capture_default_str()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--q", args->q, "Double-support configuration, 5 values [rad]")->required();
+  cmd->add_option("--mu-range", args->mu_range, "Friction samples a:b:n")->capture_default_str();
+  cmd->add_option("--theta-range", args->theta_range, "Direction samples a:b:n [deg]")
+      ->capture_default_str();
+  cmd->add_option("--model", args->model, "Impact model: algebraic | differential")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"algebraic", "differential"}));
+  cmd->add_option("--out", args->out, "Output directory (created if missing)")->required();
+  cmd->callback([args, &exit_code]() {
+    exit_code = exitCodeOf("impact-map", [&args]() { return runImpactMap(*args); });
+  });
+}
+
+}  // namespace gaitopt::cli
