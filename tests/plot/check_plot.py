@@ -5,7 +5,8 @@ Usage: check_plot.py GAITOPT_BINARY KIND
 Draws KIND from its sample directory into a scratch directory and checks that the PNG exists,
 has the size of scripts/plot/_common.py (FIG_SIZE × DPI, read from the PNG header), is not
 blank (pixel variance) and, for stick, that an SVG can be written too; then that the same kind on a
-directory of the wrong kind exits with code 2 and a message saying which kind it got.
+directory of the wrong kind exits with code 2 and a message saying which kind it got; for
+stick also the command's own errors (unknown kind, bad --out, empty GAITOPT_PLOT_SCRIPTS).
 """
 import os
 import struct
@@ -40,6 +41,21 @@ def check(condition, message):
         sys.exit(1)
 
 
+def check_command(binary, scratch):
+    """Unknown kind, bad --out and the GAITOPT_PLOT_SCRIPTS override: exit 2 with a message."""
+    result = run(binary, "nosuch", STEP_RUN)
+    check(result.returncode == 2 and "unknown figure 'nosuch'; one of: phase, reactions, stick, sweep, torques"
+          in result.stderr, f"unknown kind: {result.returncode} {result.stderr!r}")
+    result = run(binary, "stick", STEP_RUN, "--out", os.path.join(scratch, "x.pdf"))
+    check(result.returncode == 2 and "must end in .png or .svg" in result.stderr, f"--out x.pdf: {result.stderr!r}")
+    empty = os.path.join(scratch, "no_scripts")
+    os.mkdir(empty)
+    result = subprocess.run([binary, "plot", "stick", STEP_RUN], capture_output=True, text=True,
+                            env=dict(os.environ, GAITOPT_PLOT_SCRIPTS=empty))
+    check(result.returncode == 2 and f"no figure scripts in {empty}" in result.stderr,
+          f"GAITOPT_PLOT_SCRIPTS: {result.stderr!r}")
+
+
 def main(binary, kind):
     good, wrong, wrong_name = (SWEEP_RUN, STEP_RUN, "a step run directory") if kind == "sweep" \
         else (STEP_RUN, SWEEP_RUN, "a sweep directory")
@@ -63,6 +79,9 @@ def main(binary, kind):
             svg = os.path.join(scratch, f"{kind}.svg")
             result = run(binary, kind, good, "--out", svg)
             check(result.returncode == 0 and "<svg" in open(svg).read(1000), f"SVG not written: {result.stderr}")
+
+        if kind == "stick":  # the command's own checks, once
+            check_command(binary, scratch)
 
         rejected = os.path.join(scratch, "rejected.png")
         result = run(binary, kind, wrong, "--out", rejected)
