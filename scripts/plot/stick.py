@@ -58,12 +58,11 @@ def main(argv):
     ax.plot([], [], "-", color=TRUNK, label="trunk")
     ax.axhline(0.0, color="k", lw=0.8)
     ax.set_aspect("equal")
-    ax.set_ylim(-0.05, traj["z_head"].max() + 0.45)  # room for the legend above the head
     ax.set_xlabel("x from the stance foot [m]")
     ax.set_ylabel("z [m]")
     ax.set_title("single support (dark = later), then double support (light, shifted by d)",
                  fontsize="medium")
-    ax.legend(loc="upper center", fontsize="small", ncol=2)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="small")  # beside the narrow axes
     ax.grid(True, alpha=0.3)
 
     ax_clear.plot(traj["x_swing"][ss], 1e3 * traj["z_swing"][ss], color=SWING, lw=2, label="swing foot height")
