@@ -19,5 +19,6 @@ void registerSimulateCommand(CLI::App& app, int& exit_code);
 void registerStabilityCommand(CLI::App& app, int& exit_code);
 void registerImpactCommand(CLI::App& app, int& exit_code);
 void registerImpactMapCommand(CLI::App& app, int& exit_code);
+void registerPlotCommand(CLI::App& app, int& exit_code);
 
 }  // namespace gaitopt::cli

@@ -4,6 +4,7 @@
 #include <nlopt.hpp>
 
 #include "commands.hpp"
+#include "gaitopt_version.hpp"
 #include "gaitopt/io/config_error.hpp"
 
 int main(int argc, char** argv) {
@@ -11,7 +12,7 @@ int main(int argc, char** argv) {
       "gaitopt: optimal walking gaits for RABBIT-class planar bipeds (five links, point feet,\n"
       "four actuated joints), after S. Miossec's 2004 thesis."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "gaitopt 0.1.0");
+  app.set_version_flag("--version", "gaitopt " GAITOPT_VERSION " (" GAITOPT_GIT_DESCRIBE ")");
   int exit_code = 0;
   gaitopt::cli::registerModelCommand(app, exit_code);
   gaitopt::cli::registerEvaluateCommand(app, exit_code);
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
   gaitopt::cli::registerStabilityCommand(app, exit_code);
   gaitopt::cli::registerImpactCommand(app, exit_code);
   gaitopt::cli::registerImpactMapCommand(app, exit_code);
+  gaitopt::cli::registerPlotCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

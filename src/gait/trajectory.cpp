@@ -6,12 +6,50 @@
 
 #include "gaitopt/gait/evaluator_impl.hpp"
 #include "gaitopt/io/json_writer.hpp"
+#include "gaitopt/model/dynamics_pinned.hpp"
+#include "gaitopt/model/torque_envelope.hpp"
 
 namespace gaitopt {
 namespace {
 
-TrajectoryRow toRow(double t, Phase phase, const detail::PhaseSample<double>& s) {
-  return {t, phase, s.q, s.qd, s.qdd, s.gamma_star, s.R1, s.R2, s.foot2, s.com};
+// The joint points of the drawing, as origin + Σ_k e_k u(θ_k) like the model's own points
+// (model.cpp): knee 1 after the stance tibia, knee 2 after the swing femur, the head at
+// trunk_length along the trunk.
+void addDrawingPoints(const Model& m, TrajectoryRow& r) {
+  const RobotParams& p = m.robot;
+  const ChainState<double> st = chainState(m, r.q, r.qd);
+  const Vec5 knee1 = (Vec5() << -p.l1, 0, 0, 0, 0).finished();
+  const Vec5 knee2 = (Vec5() << -p.l1, -p.l2, 0, p.l4, 0).finished();
+  const Vec5 head = (Vec5() << -p.l1, -p.l2, p.trunk_length, 0, 0).finished();
+  r.knee1 = chainPoint(knee1, st);
+  r.hip = chainPoint(m.pinned.hip, st);
+  r.knee2 = chainPoint(knee2, st);
+  r.head = chainPoint(head, st);
+}
+
+TrajectoryRow toRow(const GaitEvaluator& ev, const GaitMotion<double>& mo, double t, Phase phase,
+                    const detail::PhaseSample<double>& s) {
+  TrajectoryRow r;
+  r.t = t;
+  r.phase = phase;
+  r.q = s.q;
+  r.qd = s.qd;
+  r.qdd = s.qdd;
+  r.gamma_star = s.gamma_star;
+  r.R1 = s.R1;
+  r.R2 = s.R2;
+  r.foot2 = s.foot2;
+  r.com = s.com;
+  const Model& m = ev.model();
+  addDrawingPoints(m, r);
+  r.omega = s.omega;
+  for (int j = 0; j < 4; ++j)
+    r.gamma_max(j) =
+        torqueLimit(m.robot.envelope, s.omega(j), ev.options().full_torque_envelope);
+  r.sigma = pinnedTerms(m, s.q, s.qd).A.row(0).dot(s.qd);
+  const double x = s.foot2(0) / mo.d;
+  r.clearance = ev.options().clearance_height * (1.0 - x * x);  // (3.49)
+  return r;
 }
 
 // s ∈ [−1, 1] with t(s) = t on the SS grid: t(s) is increasing as s goes from +1 to −1.
@@ -58,21 +96,25 @@ TrajectoryRow sampleTrajectoryAt(const GaitEvaluator& ev, const GaitEvaluation<d
   const GaitMotion<double>& mo = e.motion;
   const Model& m = ev.model();
   if (phase == Phase::DoubleSupport)
-    return toRow(mo.T_SS + t, phase, detail::dsSample(m, ev.options(), mo, t));
+    return toRow(ev, mo, mo.T_SS + t, phase, detail::dsSample(m, ev.options(), mo, t));
   const double s = ssCoordinateAt(ev.ssGrid(), mo.ss_time, t);
   const double alpha = chebyshevToInterval(s, mo.alpha_iSS, mo.alpha_fSS);
   const double phi = ev.ssGrid().interpolate(mo.ss_phi, s);
   const detail::SsPathPoint<double> pt = detail::ssPathPoint(m, mo, alpha);
   double ad, add;
   detail::zeroDynamicsRates(pt, phi, mo, ev.options().f_min, ad, add);
-  return toRow(t, phase, detail::ssSample(m, pt, ad, add));
+  TrajectoryRow row = toRow(ev, mo, t, phase, detail::ssSample(m, pt, ad, add));
+  row.zd_potential = -0.5 * phi;  // Φ = σ² − σ_iSS² (3.14)
+  return row;
 }
 
 std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows) {
   std::ostringstream out;
   out << "t,phase,alpha,delta1,delta2,delta3,delta4,alphad,delta1d,delta2d,delta3d,delta4d,"
          "alphadd,delta1dd,delta2dd,delta3dd,delta4dd,gamma1,gamma2,gamma3,gamma4,"
-         "R1x,R1z,R2x,R2z,x_swing,z_swing,x_com,z_com\n";
+         "R1x,R1z,R2x,R2z,x_swing,z_swing,x_com,z_com,x_knee1,z_knee1,x_hip,z_hip,x_knee2,"
+         "z_knee2,x_head,z_head,omega1,omega2,omega3,omega4,gamma_max1,gamma_max2,gamma_max3,"
+         "gamma_max4,sigma,z_clearance,zd_potential\n";
   const auto put = [&out](const auto& v) {
     for (Eigen::Index i = 0; i < v.size(); ++i) out << ',' << formatDouble(v(i));
   };
@@ -86,6 +128,11 @@ std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows) {
     put(r.R2);
     put(r.foot2);
     put(r.com);
+    for (const Vec2* p : {&r.knee1, &r.hip, &r.knee2, &r.head}) put(*p);
+    put(r.omega);
+    put(r.gamma_max);
+    out << ',' << formatDouble(r.sigma) << ',' << formatDouble(r.clearance) << ',';
+    if (r.zd_potential) out << formatDouble(*r.zd_potential);
     out << '\n';
   }
   return out.str();

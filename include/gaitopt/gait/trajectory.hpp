@@ -3,6 +3,7 @@
 // [T_SS, T_SS + T_DS], each phase closed by a row at its exact end so phase integrals over the
 // samples are exact up to the quadrature rule. Positions are in the frame of the stance foot
 // (foot 1 at the origin).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,14 @@ struct TrajectoryRow {
   Vec2 R1, R2;
   Vec2 foot2;  // swing foot in SS, rear foot in DS
   Vec2 com;
+  // Drawing and plotting aids (columns appended after the original ones): joint points, the
+  // joint speeds with their envelope torques, the angular momentum about foot 1 and, in SS,
+  // the zero-dynamics potential.
+  Vec2 knee1, hip, knee2, head;
+  Vec4 omega, gamma_max;     // ω = D_Γᵀ q̇ and Γmax(ω) (3.47) as constrained by the options
+  double sigma = 0.0;        // A[0,:] q̇, angular momentum about foot 1 [kg·m²/s]
+  double clearance = 0.0;    // clearance bound z_max (1 − (x_swing/d)²) of (3.49) [m]
+  std::optional<double> zd_potential;  // SS only: −Φ(α)/2, so σ²/2 + it is constant (3.14)
 };
 
 // Requires evaluation.motion_computed.
@@ -33,7 +42,8 @@ TrajectoryRow sampleTrajectoryAt(const GaitEvaluator& evaluator,
                                  const GaitEvaluation<double>& evaluation, Phase phase, double t);
 
 // trajectory.csv: t, phase, alpha, delta1..4, alphad, delta1d..4d, alphadd, delta1dd..4dd,
-// gamma1..4 (Γ*), R1x, R1z, R2x, R2z, x_swing, z_swing, x_com, z_com.
+// gamma1..4 (Γ*), R1x, R1z, R2x, R2z, x_swing, z_swing, x_com, z_com, then x/z of knee1, hip,
+// knee2, head, omega1..4, gamma_max1..4, sigma, z_clearance, zd_potential (empty in DS).
 std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows);
 
 }  // namespace gaitopt

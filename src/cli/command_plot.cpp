@@ -1,0 +1,109 @@
+// `gaitopt plot KIND RUN_DIR [--out FILE]`: runs the figure script scripts/plot/KIND.py with
+// /usr/bin/python3 (Debian's matplotlib). The scripts read gaitopt's own outputs only; this
+// command just finds them, so a new figure needs only a new script.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+
+namespace gaitopt::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kPython = "/usr/bin/python3";
+
+struct PlotArgs {
+  std::string kind, run_dir, out;
+};
+
+// GAITOPT_PLOT_SCRIPTS overrides the directory compiled in (the source tree's scripts/plot),
+// e.g. for a copied binary.
+fs::path scriptsDir() {
+  const char* env = std::getenv("GAITOPT_PLOT_SCRIPTS");
+  return env && *env ? fs::path(env) : fs::path(GAITOPT_SOURCE_DIR) / "scripts" / "plot";
+}
+
+// Figure kinds: the scripts KIND.py of the directory (files starting with '_' are helpers).
+std::vector<std::string> kinds(const fs::path& dir) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const fs::path& p = entry.path();
+    if (p.extension() == ".py" && p.stem().string().front() != '_') names.push_back(p.stem());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+// Runs the script without a shell (no quoting of user paths); its exit code is ours.
+int runScript(const fs::path& script, const PlotArgs& args) {
+  std::vector<std::string> argv{kPython, script.string(), args.run_dir};
+  if (!args.out.empty()) argv.insert(argv.end(), {"--out", args.out});
+  std::vector<char*> cargv;
+  for (std::string& a : argv) cargv.push_back(a.data());
+  cargv.push_back(nullptr);
+  std::cout.flush();
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("plot: cannot start " + std::string(kPython));
+  if (pid == 0) {
+    execv(kPython, cargv.data());
+    std::cerr << "gaitopt plot: error: cannot run " << kPython
+              << " (Debian: apt-get install python3-numpy python3-matplotlib)\n";
+    _exit(kExitBadInput);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
+}  // namespace
+
+void registerPlotCommand(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<PlotArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "plot",
+      "Draw a figure from a run directory with scripts/plot/KIND.py (/usr/bin/python3, "
+      "matplotlib): stick, torques, reactions, phase (a step run: summary.json + "
+      "trajectory.csv) or sweep (sweep.csv). Writes RUN_DIR/KIND.png unless --out is given. "
+      "Scripts directory: $GAITOPT_PLOT_SCRIPTS, else the source tree's scripts/plot.");
+  cmd->add_option("kind", args->kind, "Figure: the name of a script in the scripts directory")
+      ->required();
+  cmd->add_option("run_dir", args->run_dir, "Directory written by gaitopt evaluate, optimize or sweep")
+      ->required();
+  cmd->add_option("--out", args->out, "Output file, .png or .svg (default RUN_DIR/KIND.png)")
+      ->check(CLI::Validator(
+          [](std::string& s) {
+            const std::string ext = fs::path(s).extension().string();
+            return ext == ".png" || ext == ".svg" ? std::string()
+                                                  : "must end in .png or .svg: " + s;
+          },
+          "FILE"));
+  cmd->callback([args, &exit_code]() {
+    const fs::path dir = scriptsDir();
+    const std::vector<std::string> known = kinds(dir);
+    if (known.empty())
+      throw CLI::ValidationError("plot", "no figure scripts in " + dir.string() +
+                                             " (set GAITOPT_PLOT_SCRIPTS to gaitopt's scripts/plot)");
+    if (std::find(known.begin(), known.end(), args->kind) == known.end())
+      throw CLI::ValidationError("KIND", "unknown figure '" + args->kind + "'; one of: " +
+                                             joined(known) + " (scripts in " + dir.string() + ")");
+    exit_code = runScript(dir / (args->kind + ".py"), *args);
+  });
+}
+
+}  // namespace gaitopt::cli
