@@ -12,5 +12,7 @@ void registerModelCommand(CLI::App& app, int& exit_code);
 void registerEvaluateCommand(CLI::App& app, int& exit_code);
 void registerOptimizeCommand(CLI::App& app, int& exit_code);
 void registerSweepCommands(CLI::App& app, int& exit_code);  // sweep, sweep-merge
+void registerSynthCommand(CLI::App& app, int& exit_code);
+void registerDiagnoseCommand(CLI::App& app, int& exit_code);
 
 }  // namespace gaitopt::cli

@@ -17,6 +17,8 @@ int main(int argc, char** argv) {
   gaitopt::cli::registerEvaluateCommand(app, exit_code);
   gaitopt::cli::registerOptimizeCommand(app, exit_code);
   gaitopt::cli::registerSweepCommands(app, exit_code);
+  gaitopt::cli::registerSynthCommand(app, exit_code);
+  gaitopt::cli::registerDiagnoseCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
