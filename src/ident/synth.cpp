@@ -178,6 +178,26 @@ MeasuredData synthesize(const RobotParams& robot, const GaitParameters& gait,
   return d;
 }
 
+Effect randomEffect(EffectKind kind, std::mt19937_64& rng) {
+  const auto u = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  const auto sign = [&] { return u(0.0, 1.0) < 0.5 ? -1.0 : 1.0; };
+  const auto joint = [&](int n) { return std::min(n - 1, static_cast<int>(u(0.0, n))); };
+  switch (kind) {
+    case EffectKind::Coulomb: return {kind, joint(4), u(1.0, 6.0)};
+    case EffectKind::Viscous: return {kind, joint(4), u(1.0, 6.0)};
+    case EffectKind::RotorInertia: return {kind, joint(4), u(1.3, 2.0)};
+    case EffectKind::TorqueOffset: return {kind, joint(4), sign() * u(1.0, 5.0)};
+    case EffectKind::TorqueGain:
+      return {kind, joint(4), u(0.0, 1.0) < 0.5 ? u(0.85, 0.95) : u(1.05, 1.2)};
+    case EffectKind::EncoderOffset: return {kind, joint(5), sign() * u(0.01, 0.05)};
+    case EffectKind::Backlash: return {kind, joint(4), u(0.01, 0.04)};
+    case EffectKind::Payload: return {kind, kNoJoint, u(2.0, 8.0)};
+    case EffectKind::TrunkCom: return {kind, kNoJoint, sign() * u(0.02, 0.05)};
+    case EffectKind::Slope: return {kind, kNoJoint, u(0.01, 0.04)};
+  }
+  return {kind};
+}
+
 std::string synthTruthJson(const std::string& robot_path, const std::string& gait_path,
                            const std::vector<Effect>& effects, const SynthOptions& o) {
   JsonWriter w;

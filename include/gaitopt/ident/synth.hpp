@@ -9,6 +9,7 @@
 // R2x = argmin ‖Γ*‖² = Kᵀ J / Kᵀ K of (3.62). Then the sensor effects, encoder quantisation,
 // torque and force noise.
 #include <cstdint>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,13 @@ struct SynthOptions {
 MeasuredData synthesize(const RobotParams& robot, const GaitParameters& gait,
                         const GaitOptions& gait_options, const ModelOptions& model_options,
                         const std::vector<Effect>& effects, const SynthOptions& options);
+
+// An effect of `kind` with a seeded random joint and a magnitude in the realistic range of
+// issue 9 (coulomb 1–6 N·m, viscous 1–6 N·m·s/rad, rotor_inertia ×1.3–2, torque_offset ±1–5 N·m,
+// torque_gain 0.85–0.95 or 1.05–1.2, encoder_offset ±0.01–0.05 rad (joints or alpha), backlash
+// 0.01–0.04 rad, payload 2–8 kg, trunk_com ±0.02–0.05 m, slope 0.01–0.04 rad): hidden-effect
+// tests of identification pipelines.
+Effect randomEffect(EffectKind kind, std::mt19937_64& rng);
 
 // FILE.truth.json: the hidden truth (effects with values and units, seed, noise, steps).
 std::string synthTruthJson(const std::string& robot_path, const std::string& gait_path,
