@@ -313,12 +313,34 @@ struct Scored {
 };
 
 // Statistics of a fitted model against the base (the accepted effects) of its round.
+// The inflation φ of each channel, weighted by that channel's share of the RSS reduction: the
+// autocorrelation that matters is that of the channels carrying the effect.
+double signalInflation(const std::vector<Entry>& entries, const Eigen::VectorXd& base,
+                       const Eigen::VectorXd& r) {
+  std::array<std::vector<Entry>, kNumChannels> e;
+  std::array<std::vector<double>, kNumChannels> v;
+  std::array<double, kNumChannels> drop{};
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const int c = entries[i].channel;
+    e[c].push_back(entries[i]);
+    v[c].push_back(r(i));
+    drop[c] += base(i) * base(i) - r(i) * r(i);
+  }
+  double num = 0.0, den = 0.0;
+  for (int c = 0; c < kNumChannels; ++c) {
+    if (e[c].empty() || drop[c] <= 0.0) continue;
+    num += drop[c] * inflation(e[c], Eigen::Map<const Eigen::VectorXd>(v[c].data(), v[c].size()));
+    den += drop[c];
+  }
+  return den > 0.0 ? num / den : inflation(entries, r);
+}
+
 Scored score(const Context& ctx, Fit f, const std::array<double, kNumChannels>& sigma,
-             double rss_base, double n) {
+             double rss_base, double n, const Eigen::VectorXd& base) {
   Scored s;
   const Eigen::VectorXd r = weightedVector(ctx.fit.entries, f.r.fit, sigma);
   const double k = static_cast<double>(f.effects.size());
-  s.phi = inflation(ctx.fit.entries, r);
+  s.phi = signalInflation(ctx.fit.entries, base, r);
   s.s2 = r.squaredNorm() / std::max(1.0, n - k);
   CandidateResult& c = s.result;
   c.all = f.effects;
@@ -416,7 +438,7 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
     parallelFor(refined, [&](int i) {
       std::vector<int> which = accepted;
       which.push_back(order[i].second);
-      scored[i] = score(ctx, chordFit(ctx, lin, which, sigma, kIterations), sigma, rss_base, n);
+      scored[i] = score(ctx, chordFit(ctx, lin, which, sigma, kIterations), sigma, rss_base, n, rb);
     });
     if (accepted.empty()) {
       for (const Scored& s : scored) dg.candidates.push_back(s.result);
@@ -427,13 +449,13 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
         const double p = -(J.col(0).dot(weightedVector(fit.entries, r0.fit, sigma))) / J.squaredNorm();
         f.effects[0].value = effectValue(f.effects[0].kind, p);
         f.r = {r0.fit + lin.columns[which[0]].fit * p, r0.held + lin.columns[which[0]].held * p};
-        dg.candidates.push_back(score(ctx, f, sigma, rss_base, n).result);
+        dg.candidates.push_back(score(ctx, f, sigma, rss_base, n, rb).result);
       }
     }
     const auto best = std::min_element(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) {
       return a.result.bic < b.result.bic;
     });
-    *best = score(ctx, gaussNewton(ctx, best->fit, sigma, 2), sigma, rss_base, n);
+    *best = score(ctx, gaussNewton(ctx, best->fit, sigma, 2), sigma, rss_base, n, rb);
     const CandidateResult& br = best->result;
     if (!(br.p_value < o.significance && br.holdout_rms < held_base &&
           bestChannelGain(held.entries, base.r.held, best->fit.r.held) >= o.min_channel_gain))
