@@ -153,7 +153,9 @@ MeasuredData synthesize(const RobotParams& robot, const GaitParameters& gait,
     evaluators[static_cast<int>(s)].emplace(stanceRobot(truth, s), gait_options, model_options);
     models[static_cast<int>(s)] = buildModel(stanceRobot(truth, s), model_options);
   }
-  Noise noise{std::mt19937_64(options.seed), options};
+  // Separate streams: the same seed gives the same motion with and without noise.
+  std::mt19937_64 excitation(options.seed);
+  Noise noise{std::mt19937_64(options.seed ^ 0x9E3779B97F4A7C15ULL), options};
   MeasuredData d;
   d.has_torque = d.has_reactions = true;
   double t0 = 0.0;
@@ -163,7 +165,7 @@ MeasuredData synthesize(const RobotParams& robot, const GaitParameters& gait,
     std::vector<TrueSample> samples;
     for (int attempt = 0; attempt < 40 && samples.empty(); ++attempt) {
       const double scale = options.variation / (1.0 + attempt / 10);
-      const GaitEvaluation<double> e = ev.evaluate(varied(gait, noise.rng, scale));
+      const GaitEvaluation<double> e = ev.evaluate(varied(gait, excitation, scale));
       if (e.motion_computed && !e.numerically_undefined)
         samples = stepSamples(models[static_cast<int>(stance)], gait_options, e.motion, truth.ground_slope,
                               options.rate);

@@ -35,7 +35,7 @@ struct DiagnoseOptions {
   double min_channel_gain = 10.0;
   int max_causes = 3;
   double edge_trim = 0.03;         // [s]
-  PreprocessOptions preprocess{0.1, 8};
+  PreprocessOptions preprocess;
 };
 
 struct ChannelReport {
