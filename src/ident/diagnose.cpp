@@ -306,6 +306,13 @@ double pct(double before, double after) {
 
 namespace {
 
+ResidualMatrix fitMatrix(std::size_t rows, const std::vector<Entry>& entries,
+                         const Eigen::VectorXd& values) {
+  ResidualMatrix m = ResidualMatrix::Constant(rows, kNumChannels, kNaN);
+  for (std::size_t e = 0; e < entries.size(); ++e) m(entries[e].row, entries[e].channel) = values(e);
+  return m;
+}
+
 struct Scored {
   CandidateResult result;
   Fit fit;
@@ -406,21 +413,18 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
                       entryValues(held.entries, dg.nominal_residuals)};
   const Linearisation lin = linearise(ctx, candidateEffects(o, data), r0);
   std::array<double, kNumChannels> sigma = channelSigma(fit, dg.nominal_residuals);
-  std::vector<int> accepted;
+  std::vector<int> accepted, confounded;
   Fit base{{}, r0, {}};
   while (static_cast<int>(accepted.size()) < o.max_causes) {
-    ResidualMatrix base_matrix = ResidualMatrix::Constant(data.size(), kNumChannels, kNaN);
-    for (std::size_t e = 0; e < fit.entries.size(); ++e)
-      base_matrix(fit.entries[e].row, fit.entries[e].channel) = base.r.fit(e);
-    sigma = channelSigma(fit, base_matrix);  // noise level of the current model, per channel
+    sigma = channelSigma(fit, fitMatrix(data.size(), fit.entries, base.r.fit));  // current model
     const Eigen::VectorXd rb = weightedVector(fit.entries, base.r.fit, sigma);
-    const Eigen::VectorXd hb = weightedVector(held.entries, base.r.held, sigma);
     const double rss_base = rb.squaredNorm();
-    const double held_base = std::sqrt(hb.squaredNorm() / hb.size());
     // Screening: each remaining candidate with the accepted ones, linearised (one LS solve).
     std::vector<std::pair<double, int>> order;
     for (int c = 0; c < static_cast<int>(lin.candidates.size()); ++c) {
-      if (std::find(accepted.begin(), accepted.end(), c) != accepted.end()) continue;
+      if (std::find(accepted.begin(), accepted.end(), c) != accepted.end() ||
+          std::find(confounded.begin(), confounded.end(), c) != confounded.end())
+        continue;  // in a cause already, or in its class
       std::vector<int> which = accepted;
       which.push_back(c);
       Eigen::MatrixXd J(fit.entries.size(), which.size());
@@ -455,24 +459,41 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
     const auto best = std::min_element(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) {
       return a.result.bic < b.result.bic;
     });
-    *best = score(ctx, gaussNewton(ctx, best->fit, sigma, 2), sigma, rss_base, n, rb);
-    const CandidateResult& br = best->result;
-    if (!(br.p_value < o.significance && br.holdout_rms < held_base &&
-          bestChannelGain(held.entries, base.r.held, best->fit.r.held) >= o.min_channel_gain))
-      break;
-    Cause cause{br.effect, br.stderr_, br.p_value, {}};
+    // The class of the best: candidates statistically indistinguishable from it.
+    Cause cause{best->result.effect, 0.0, 1.0, {}};
     const double threshold = chi2Quantile1(o.significance);
+    std::vector<int> cls;
     for (const Scored& s : scored)
       if (&s != &*best && s.result.p_value < o.significance &&
-          (s.result.rss - br.rss) / (best->phi * best->s2) < threshold)
+          s.result.bic - best->result.bic < threshold) {
         cause.confounded_with.push_back(effectLabel(s.result.effect));
+        for (int c = 0; c < static_cast<int>(lin.candidates.size()); ++c)
+          if (sameCandidate(lin.candidates[c], s.result.effect)) cls.push_back(c);
+      }
+    // Reweight with the noise levels the best model leaves (the current model's are
+    // conservative where the effect acts) and refit it by Gauss–Newton before testing.
+    sigma = channelSigma(fit, fitMatrix(data.size(), fit.entries, best->fit.r.fit));
+    const Eigen::VectorXd rb2 = weightedVector(fit.entries, base.r.fit, sigma);
+    const Eigen::VectorXd hb2 = weightedVector(held.entries, base.r.held, sigma);
+    *best = score(ctx, gaussNewton(ctx, best->fit, sigma, 3), sigma, rb2.squaredNorm(), n, rb2);
+    const CandidateResult& br = best->result;
+    if (!(br.p_value < o.significance &&
+          br.holdout_rms < std::sqrt(hb2.squaredNorm() / hb2.size()) &&
+          bestChannelGain(held.entries, base.r.held, best->fit.r.held) >= o.min_channel_gain))
+      break;
+    cause.effect = br.effect;
+    cause.stderr_ = br.stderr_;
+    cause.p_value = br.p_value;
+    confounded.insert(confounded.end(), cls.begin(), cls.end());
     dg.causes.push_back(cause);
     for (const Effect& e : br.all)
       for (int c = 0; c < static_cast<int>(lin.candidates.size()); ++c)
         if (sameCandidate(e, lin.candidates[c]) &&
             std::find(accepted.begin(), accepted.end(), c) == accepted.end())
           accepted.push_back(c);
-    base = best->fit;
+    // Converge the accepted model, so that the next round credits a candidate only with what
+    // it adds, not with a better fit of the effects already accepted.
+    base = gaussNewton(ctx, best->fit, sigma, 3);
   }
   for (std::size_t i = 0; i < dg.causes.size(); ++i) dg.causes[i].effect.value = base.effects[i].value;
   dg.extended_robot = withEffects(robot, base.effects);

@@ -1,5 +1,5 @@
 // gaitopt diagnose on hidden effects (issue 9): one seeded case per effect at 20 steps, null
-// data, two effects at once, and invariance to column order and to a
+// data, two effects at once, a confounded pair, and invariance to column order and to a
 // consistent swap of the stance labels. The >= 100-case hit rate is bench/bench_diagnose.cpp.
 #include <catch2/catch.hpp>
 
@@ -79,6 +79,46 @@ TEST_CASE("diagnose finds two effects at once", "[ident][diagnose]") {
   CHECK(std::count(found.begin(), found.end(), effectLabel(a)) == 1);
   CHECK(std::count(found.begin(), found.end(), effectLabel(b)) == 1);
   CHECK(d.overall_pct > 50.0);
+}
+
+TEST_CASE("diagnose reports a confounded pair as one class", "[ident][diagnose]") {
+  // Only the single-support runs where knee_right turns forward (each run its own "step"): a
+  // Coulomb torque and a torque offset on that joint are then indistinguishable.
+  const MeasuredData full = synth({{EffectKind::TorqueOffset, 3, 3.0}}, 11);
+  MeasuredData d = full;
+  d.t.clear(); d.q.clear(); d.phase.clear(); d.stance.clear(); d.step.clear();
+  d.gamma.clear(); d.reactions.clear();
+  long run = -1;
+  std::vector<std::size_t> rows;
+  const auto flush = [&] {
+    if (rows.size() >= 40) {
+      ++run;
+      for (std::size_t i : rows) {
+        d.t.push_back(full.t[i]); d.q.push_back(full.q[i]); d.phase.push_back(full.phase[i]);
+        d.stance.push_back(full.stance[i]); d.step.push_back(run);
+        d.gamma.push_back(full.gamma[i]); d.reactions.push_back(full.reactions[i]);
+      }
+    }
+    rows.clear();
+  };
+  for (std::size_t i = 0; i + 1 < full.size(); ++i) {
+    const int motor = full.stance[i] == Stance::Left ? 3 : 0;  // knee_right
+    const bool same = full.step[i + 1] == full.step[i] && full.phase[i + 1] == full.phase[i];
+    const bool forward = same && motorAngles(full.q[i + 1])(motor) > motorAngles(full.q[i])(motor);
+    if (forward && full.phase[i] == Phase::SingleSupport) rows.push_back(i); else flush();
+  }
+  flush();
+  REQUIRE(run >= 5);
+  DiagnoseOptions o;
+  o.kinds = {EffectKind::Coulomb, EffectKind::TorqueOffset};
+  const Diagnosis dg = diagnose(gait().robot, gait().model_options, d, o);
+  REQUIRE(dg.causes.size() == 1);
+  const Cause& c = dg.causes[0];
+  std::vector<std::string> cls = c.confounded_with;
+  cls.push_back(effectLabel(c.effect));
+  std::sort(cls.begin(), cls.end());
+  CHECK(cls == std::vector<std::string>{"coulomb@knee_right", "torque_offset@knee_right"});
+  CHECK(c.effect.value == Approx(3.0).epsilon(0.1));
 }
 
 TEST_CASE("diagnose is invariant to a consistent swap of the stance labels", "[ident][diagnose]") {

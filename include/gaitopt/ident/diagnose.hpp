@@ -14,8 +14,9 @@
 // Selection: lowest BIC; accepted when an F-type test (Δ weighted RSS over the residual
 // variance, inflated by the residual autocorrelation: effective sample size n/φ,
 // φ = 1 + 2 Σ_k ρ_k) gives p < significance AND the held-out error decreases. Candidates whose
-// fit is statistically indistinguishable from the best (ΔRSS below the test's threshold) and
-// significant themselves are reported in `confounded_with`. A cause must also reduce the
+// fit is statistically indistinguishable from the best and
+// significant themselves are reported in `confounded_with` (BIC within the test's χ²₁
+// threshold of the best: the same number of parameters, so ΔBIC is the likelihood ratio). A cause must also reduce the
 // held-out RMS of at least one channel by min_channel_gain %. Then stepwise: the accepted effects
 // are refitted jointly with each remaining candidate, up to max_causes.
 #include <string>
