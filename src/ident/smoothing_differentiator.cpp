@@ -35,7 +35,9 @@ SmoothingDifferentiator::SmoothingDifferentiator(const std::vector<double>& t,
       while (b < s.end && t[b] - t[a] <= 2.0 * half_window) ++b;
       while (a > s.begin && t[b - 1] - t[a - 1] <= 2.0 * half_window) --a;
       const int n = static_cast<int>(b - a);
-      const int p = std::min(order, n - 1);
+      // A short segment (a 40 ms double support) gets a lower degree: a degree-8 fit through
+      // 18 quantised samples would amplify their noise hugely.
+      const int p = std::min(order, std::max(2, n / 5));
       // Uniformly sampled windows of the same shape share their weights.
       bool uniform = n >= 2;
       const double dt = n >= 2 ? t[a + 1] - t[a] : 0.0;

@@ -3,7 +3,8 @@
 // to irregular times. At each sample, the least-squares polynomial of degree `order` through
 // the samples of the same segment (one phase of one step) within ±half_window seconds — the
 // window slides inward near segment ends and shrinks to the whole segment when that is shorter
-// — gives the smoothed value and its first two derivatives there. Linear in the signal: the
+// — gives the smoothed value and its first two derivatives there (degree lowered to n/5, at
+// least 2, for a window of n < 5 × degree samples). Linear in the signal: the
 // per-sample weights are computed once and applied to any number of signals.
 #include <Eigen/Core>
 #include <cstddef>
