@@ -208,6 +208,16 @@ Fit chordFit(const Context& ctx, const Linearisation& lin, const std::vector<int
     }
     return e;
   };
+  const bool linear = std::all_of(which.begin(), which.end(),
+                                  [&](int c) { return effectInfo(lin.candidates[c].kind).linear; });
+  if (linear && iterations > 0) {  // the linearisation is exact: no model evaluation needed
+    p = solver.solve(-J.transpose() * r);
+    for (int i = 0; i < k; ++i) {
+      f.r.fit += lin.columns[which[i]].fit * p(i);
+      f.r.held += lin.columns[which[i]].held * p(i);
+    }
+    iterations = 0;
+  }
   for (int it = 0; it < iterations; ++it) {
     const Eigen::VectorXd delta = solver.solve(-J.transpose() * r);
     const Evaluation trial = ctx.evaluate(effectsAt(p + delta));
@@ -234,6 +244,11 @@ Fit gaussNewton(const Context& ctx, Fit f, const std::array<double, kNumChannels
                 int iterations) {
   const int k = static_cast<int>(f.effects.size());
   const std::vector<Entry>& entries = ctx.fit.entries;
+  if (std::all_of(f.effects.begin(), f.effects.end(),
+                  [](const Effect& e) { return effectInfo(e.kind).linear; })) {
+    // Exact in one weighted LS step from the columns (they do not depend on the point).
+    return f;
+  }
   Eigen::VectorXd r = weightedVector(entries, f.r.fit, sigma);
   for (int it = 0; it < iterations; ++it) {
     Eigen::MatrixXd J(entries.size(), k);
@@ -314,6 +329,7 @@ ResidualMatrix fitMatrix(std::size_t rows, const std::vector<Entry>& entries,
 }
 
 struct Scored {
+  std::vector<int> which;  // candidate indices of the model
   CandidateResult result;
   Fit fit;
   double phi = 1.0, s2 = 1.0;
@@ -443,6 +459,7 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
       std::vector<int> which = accepted;
       which.push_back(order[i].second);
       scored[i] = score(ctx, chordFit(ctx, lin, which, sigma, kIterations), sigma, rss_base, n, rb);
+      scored[i].which = which;
     });
     if (accepted.empty()) {
       for (const Scored& s : scored) dg.candidates.push_back(s.result);
@@ -475,7 +492,13 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
     sigma = channelSigma(fit, fitMatrix(data.size(), fit.entries, best->fit.r.fit));
     const Eigen::VectorXd rb2 = weightedVector(fit.entries, base.r.fit, sigma);
     const Eigen::VectorXd hb2 = weightedVector(held.entries, base.r.held, sigma);
-    *best = score(ctx, gaussNewton(ctx, best->fit, sigma, 3), sigma, rb2.squaredNorm(), n, rb2);
+    const Fit refit = std::all_of(best->which.begin(), best->which.end(),
+                                  [&](int c) { return effectInfo(lin.candidates[c].kind).linear; })
+                          ? chordFit(ctx, lin, best->which, sigma, 1)
+                          : gaussNewton(ctx, best->fit, sigma, 3);
+    const std::vector<int> best_which = best->which;
+    *best = score(ctx, refit, sigma, rb2.squaredNorm(), n, rb2);
+    best->which = best_which;
     const CandidateResult& br = best->result;
     if (!(br.p_value < o.significance &&
           br.holdout_rms < std::sqrt(hb2.squaredNorm() / hb2.size()) &&

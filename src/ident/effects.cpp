@@ -10,16 +10,16 @@ namespace gaitopt {
 namespace {
 
 constexpr std::array<EffectInfo, kNumEffectKinds> kEffects = {{
-    {"coulomb", "N·m", true, false, true, 1.0},
-    {"viscous", "N·m·s/rad", true, false, true, 1.0},
-    {"rotor_inertia", "factor", true, true, true, 0.1},
-    {"torque_offset", "N·m", true, false, true, 1.0},
-    {"torque_gain", "factor", true, true, true, 0.01},
-    {"encoder_offset", "rad", true, false, false, 1e-3},
-    {"backlash", "rad", true, false, true, 1e-3},
-    {"payload", "kg", false, false, false, 0.5},
-    {"trunk_com", "m", false, false, false, 5e-3},
-    {"slope", "rad", false, false, false, 1e-3},
+    {"coulomb", "N·m", true, false, true, 1.0, true},
+    {"viscous", "N·m·s/rad", true, false, true, 1.0, true},
+    {"rotor_inertia", "factor", true, true, true, 0.1, true},
+    {"torque_offset", "N·m", true, false, true, 1.0, true},
+    {"torque_gain", "factor", true, true, true, 0.01, true},
+    {"encoder_offset", "rad", true, false, false, 1e-3, false},
+    {"backlash", "rad", true, false, true, 1e-3, false},
+    {"payload", "kg", false, false, false, 0.5, false},
+    {"trunk_com", "m", false, false, false, 5e-3, false},
+    {"slope", "rad", false, false, false, 1e-3, false},
 }};
 
 // Width of the smoothed sign of the backlash dead band [N·m] (issue: "about 1 N·m").

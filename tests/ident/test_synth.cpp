@@ -70,15 +70,19 @@ TEST_CASE("synth: hidden effects change the data the nominal model predicts", "[
   const MeasuredData d = synth({{EffectKind::TorqueOffset, 3, 2.0}}, false);
   const PreparedData p(d);
   const ResidualMatrix r = residuals(p, g.robot, g.model_options, std::vector<char>(d.size(), 1));
-  double mean = 0.0;
-  int n = 0;
-  for (Eigen::Index i = 0; i < r.rows(); ++i)
-    if (d.phase[i] == Phase::SingleSupport && std::isfinite(r(i, kGammaKneeRight))) {
-      mean += r(i, kGammaKneeRight);
-      ++n;
-    }
-  CHECK(mean / n == Approx(2.0).margin(0.2));  // measured = true + offset
-  CHECK(channelRms(r, kGammaKneeLeft) < 0.6 * channelRms(r, kGammaKneeRight));
+  // Mean single-support residual per knee: the offset on knee_right only.
+  const auto ssMean = [&](int c) {
+    double mean = 0.0;
+    int n = 0;
+    for (Eigen::Index i = 0; i < r.rows(); ++i)
+      if (d.phase[i] == Phase::SingleSupport && std::isfinite(r(i, c))) {
+        mean += r(i, c);
+        ++n;
+      }
+    return mean / n;
+  };
+  CHECK(ssMean(kGammaKneeRight) == Approx(2.0).margin(0.2));  // measured = true + offset
+  CHECK(std::abs(ssMean(kGammaKneeLeft)) < 0.2);
 }
 
 TEST_CASE("synth: seeded, reproducible, alternating stance, noise as specified", "[ident]") {

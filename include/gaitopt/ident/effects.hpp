@@ -36,6 +36,7 @@ struct EffectInfo {
   bool factor;      // value is a factor, neutral 1 (else additive, neutral 0)
   bool needs_torque;  // only visible through measured torques
   double step;      // finite-difference step and typical scale of the value
+  bool linear;      // the predicted measurements are affine in the value
 };
 const EffectInfo& effectInfo(EffectKind kind);
 
