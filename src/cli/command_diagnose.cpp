@@ -74,7 +74,8 @@ void registerDiagnoseCommand(CLI::App& app, int& exit_code) {
     writeFileAtomically((dir / "residuals.csv").string(), csv);
     writeFileAtomically((dir / "report.md").string(), report);
     writeFileAtomically((dir / "extended_robot.yaml").string(), yaml);
-    std::cout << report.substr(report.find('\n', 2) + 2, report.find('\n', report.find('\n', 2) + 2) - report.find('\n', 2) - 2) << "\n";
+    const std::size_t first = report.find("\n\n") + 2;  // the sentence after the title
+    std::cout << report.substr(first, report.find('\n', first) - first) << "\n";
     exit_code = 0;
   });
 }

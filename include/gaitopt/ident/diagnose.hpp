@@ -16,9 +16,10 @@
 // φ = 1 + 2 Σ_k ρ_k) gives p < significance AND the held-out error decreases. Candidates whose
 // fit is statistically indistinguishable from the best and
 // significant themselves are reported in `confounded_with` (BIC within the test's χ²₁
-// threshold of the best: the same number of parameters, so ΔBIC is the likelihood ratio). A cause must also reduce the
-// held-out RMS of at least one channel by min_channel_gain %. Then stepwise: the accepted effects
-// are refitted jointly with each remaining candidate, up to max_causes.
+// threshold of the best: the same number of parameters, so ΔBIC is the likelihood ratio).
+// A cause must also reduce the held-out RMS of at least one channel by min_channel_gain %.
+// Then stepwise: the accepted effects are refitted jointly with each remaining candidate, up
+// to max_causes. The `inertial` candidate (base inertial parameters) is not implemented.
 #include <string>
 #include <vector>
 
