@@ -20,5 +20,7 @@ void registerStabilityCommand(CLI::App& app, int& exit_code);
 void registerImpactCommand(CLI::App& app, int& exit_code);
 void registerImpactMapCommand(CLI::App& app, int& exit_code);
 void registerPlotCommand(CLI::App& app, int& exit_code);
+void registerSynthCommand(CLI::App& app, int& exit_code);
+void registerDiagnoseCommand(CLI::App& app, int& exit_code);
 
 }  // namespace gaitopt::cli

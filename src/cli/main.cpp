@@ -26,6 +26,8 @@ int main(int argc, char** argv) {
   gaitopt::cli::registerImpactCommand(app, exit_code);
   gaitopt::cli::registerImpactMapCommand(app, exit_code);
   gaitopt::cli::registerPlotCommand(app, exit_code);
+  gaitopt::cli::registerSynthCommand(app, exit_code);
+  gaitopt::cli::registerDiagnoseCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

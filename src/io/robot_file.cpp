@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gaitopt/model/support_bar.hpp"
+#include "gaitopt/io/robot_extensions.hpp"
 #include "gaitopt/io/yaml_reader.hpp"
 
 namespace gaitopt {
@@ -170,6 +171,7 @@ RobotParams parseRobot(const YAML::Node& root, const std::string& file) {
   robot.gravity = optionalPositive(doc, "gravity", robot.gravity);
   if (const auto bar = doc.optionalMap("support_bar")) robot.bar = readSupportBar(*bar);
   robot.trunk_length = optionalPositive(doc, "trunk_length", robot.trunk_length);
+  readRobotExtensions(doc, robot);
   doc.rejectUnknownKeys();
   return robot;
 }

@@ -47,9 +47,13 @@ Model buildModel(const RobotParams& robot, const ModelOptions& options) {
     m.com_offset(i) = robot.s[i];
     m.inertia(i) = robot.inertia[i];
   }
-  if (robot.bar.present) {
+  m.com_offset(2) += robot.trunk_com_shift;
+  if (robot.bar.present || robot.hip_payload != 0.0) {
+    // A payload at the hip folds in exactly like the bar's equivalent mass (1.24).
+    const double hip_mass = (robot.bar.present ? robot.bar.equivalent_mass : 0.0) +
+                            robot.hip_payload;
     const TrunkParameters t =
-        trunkWithBar(robot.mass[2], robot.s[2], robot.inertia[2], robot.bar.equivalent_mass);
+        trunkWithBar(robot.mass[2], m.com_offset(2), robot.inertia[2], hip_mass);
     m.mass(2) = t.mass;
     m.com_offset(2) = t.com_offset;
     m.inertia(2) = t.inertia;

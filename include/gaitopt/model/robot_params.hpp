@@ -33,6 +33,28 @@ struct JointLimits {
   double knee_max = -2.2165681500327987; // -127°
 };
 
+// Effects the thesis model lacks, identified from measured data by `gaitopt diagnose` and
+// injected by `gaitopt synth` (ident/). All neutral by default, so a robot file without them
+// gives exactly the thesis model. Arrays are per PHYSICAL joint (knee_left, hip_left,
+// hip_right, knee_right): the motor number of a physical joint changes with the stance leg
+// (ident/effects.hpp maps them).
+struct JointExtras {
+  std::array<double, 4> coulomb{};  // added to Γs [N·m]
+  std::array<double, 4> viscous{};  // added to Fv [N·m·s/rad]
+  std::array<double, 4> rotor_inertia_factor{1.0, 1.0, 1.0, 1.0};  // on I_m
+};
+
+// What the sensors read: measured Γ* = torque_gain × Γ* + torque_offset; measured joint-side
+// motor angle = link angle + encoder_offset + backlash/2 × tanh(Γ*/1 N·m); measured α = α +
+// alpha_offset.
+struct SensorModel {
+  std::array<double, 4> torque_gain{1.0, 1.0, 1.0, 1.0};
+  std::array<double, 4> torque_offset{};   // [N·m]
+  std::array<double, 4> encoder_offset{};  // [rad]
+  std::array<double, 4> backlash{};        // total dead-band width [rad]
+  double alpha_offset = 0.0;               // [rad]
+};
+
 struct RobotParams {
   std::string name;
   std::string source_file;  // path it was read from (for messages)
@@ -53,6 +75,11 @@ struct RobotParams {
   double gravity = 9.81;
   SupportBar bar;
   double trunk_length = 0.625;  // hip to top of trunk [m]; drawing only, not in the dynamics
+  JointExtras joint_extras;     // used per stance by ident/; gait optimisation ignores them
+  SensorModel sensors;          // used by ident/ only
+  double hip_payload = 0.0;     // extra point mass at the hip [kg], folded like the bar (1.24)
+  double trunk_com_shift = 0.0; // added to s3 (trunk alone, before the bar) [m]
+  double ground_slope = 0.0;    // ground inclination [rad], + uphill; used by ident/ only
 };
 
 }  // namespace gaitopt

@@ -1,0 +1,89 @@
+#pragma once
+// `gaitopt diagnose` (issue 9): where a robot model's predictions and measured data disagree,
+// which candidate effect (ident/effects.hpp) explains it, and how much better the extended model
+// predicts steps it was not fitted on.
+//
+// Fit: every candidate (effect, physical joint) has one parameter, fitted by Gauss–Newton on
+// the weighted residuals of the fit steps (central-difference Jacobian; one iteration is exact
+// for the effects linear in their parameter). Weights 1/σ_c² per channel, σ_c the RMS residual
+// of the current model in that channel (noise estimated from the data, conservative while an
+// effect is unexplained). Channels: the single-support alpha_row, torque and reaction residuals
+// (samples within edge_trim of a phase boundary left out: the smoothing differentiator is
+// one-sided there) and the double-support ds_foot2_z; double-support dynamics are reported but
+// not fitted (a 40 ms phase is too short to differentiate quantised angles twice).
+// Selection: lowest BIC; accepted when an F-type test (Δ weighted RSS over the residual
+// variance, inflated by the residual autocorrelation: effective sample size n/φ,
+// φ = 1 + 2 Σ_k ρ_k) gives p < significance AND the held-out error decreases. Candidates whose
+// fit is statistically indistinguishable from the best and
+// significant themselves are reported in `confounded_with` (BIC within the test's χ²₁
+// threshold of the best: the same number of parameters, so ΔBIC is the likelihood ratio).
+// A cause must also reduce the held-out RMS of at least one channel by min_channel_gain %.
+// Then stepwise: the accepted effects are refitted jointly with each remaining candidate, up
+// to max_causes. The `inertial` candidate (base inertial parameters) is not implemented.
+#include <string>
+#include <vector>
+
+#include "gaitopt/ident/effects.hpp"
+#include "gaitopt/ident/residual_model.hpp"
+
+namespace gaitopt {
+
+struct DiagnoseOptions {
+  int holdout = 3;                 // every K-th step held out (K >= 2)
+  std::vector<EffectKind> kinds;   // candidate effects; empty: all
+  double significance = 0.01;
+  // Practical significance: a cause must also cut the held-out RMS of some channel by this
+  // much [%] (a statistically significant but tiny effect may be a bias of the smoothing).
+  double min_channel_gain = 10.0;
+  int max_causes = 3;
+  double edge_trim = 0.03;         // [s]
+  PreprocessOptions preprocess;
+};
+
+struct ChannelReport {
+  std::array<double, kNumChannels> rms{}, rms_ss{}, rms_ds{}, relative_rms{};  // NaN: no data
+  Eigen::VectorXd simulation_error;  // α, knee_left..knee_right, overall [rad]; empty: no torque
+  double normalised_rms = 0.0;       // RMS of the weighted fit residuals (noise units)
+};
+
+struct CandidateResult {
+  Effect effect;        // fitted value
+  double stderr_ = 0.0;
+  double rss = 0.0;     // weighted, fit steps
+  double bic = 0.0;
+  double holdout_rms = 0.0;  // normalised, held-out steps
+  double p_value = 1.0;
+  std::vector<Effect> all;   // every effect of the model (accepted ones refitted)
+};
+
+struct Cause {
+  Effect effect;
+  double stderr_ = 0.0, p_value = 1.0;
+  std::vector<std::string> confounded_with;
+};
+
+struct Diagnosis {
+  std::vector<char> holdout_rows, fit_rows;
+  ChannelReport nominal_all, nominal, extended;  // nominal_all: every step; others: held out
+  std::vector<CandidateResult> candidates;       // first round, every candidate
+  std::vector<Cause> causes;
+  RobotParams extended_robot;
+  ResidualMatrix nominal_residuals, extended_residuals;  // every sample
+  std::array<double, kNumChannels> rms_reduction_pct{};
+  double overall_pct = 0.0, simulation_error_reduction_pct = 0.0;
+  std::string smoothing;  // description of the differentiator
+};
+
+// Throws std::invalid_argument for holdout < 2 or when fewer than two fit steps remain.
+Diagnosis diagnose(const RobotParams& robot, const ModelOptions& model_options,
+                   const MeasuredData& data, const DiagnoseOptions& options = {});
+
+std::string diagnosisJson(const Diagnosis& d);
+std::string residualsCsv(const MeasuredData& data, const Diagnosis& d);
+std::string diagnosisReport(const Diagnosis& d);
+
+// The nominal robot file's document with the identified effects as extension keys
+// (io/robot_extensions.hpp): a valid robot file.
+std::string extendedRobotYaml(const std::string& robot_path, const RobotParams& extended);
+
+}  // namespace gaitopt

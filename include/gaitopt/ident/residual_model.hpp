@@ -1,0 +1,60 @@
+#pragma once
+// What a robot description predicts for measured data, and the residuals measured − predicted
+// per sample and channel (issue 9, step 2). At the measured kinematics (smoothed, corrected for
+// the description's encoder offsets and backlash):
+//  - alpha_row (SS): the α-row of (1.32), the moment a point foot would have to supply; 0 if
+//    the model were right, available without any torque sensor;
+//  - gamma_<joint> (SS, DS): measured Γ* − (torque_gain × Γ* + torque_offset), Γ* by (3.57) in
+//    SS and (3.62) in DS with R2x measured (or, without reaction columns, the R2x that best fits
+//    the measured torques);
+//  - R1x, R1z, R2x, R2z: measured − predicted reactions (Newton (1.36), R2 = 0 in SS; in DS
+//    R2z by the α-row (3.58) and R1 by (3.59), R2x being measured, so no R2x residual);
+//  - ds_foot2_z (DS): height of the rear foot above the ground line z = x tan(slope).
+// Unavailable entries are NaN.
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "gaitopt/ident/smoothing_differentiator.hpp"
+#include "gaitopt/model/model.hpp"
+
+namespace gaitopt {
+
+enum Channel : int {
+  kAlphaRow = 0, kGammaKneeLeft, kGammaHipLeft, kGammaHipRight, kGammaKneeRight,
+  kR1x, kR1z, kR2x, kR2z, kFoot2z, kNumChannels
+};
+extern const std::array<const char*, kNumChannels> kChannelNames;
+extern const std::array<const char*, kNumChannels> kChannelUnits;
+
+// Smoothing parameters of the preprocessing (step 1): degree 8 over ±100 ms, chosen on
+// synthetic data as the smallest bias (0.05 N·m on the torques) for q̈ noise about 1 N·m.
+struct PreprocessOptions {
+  double half_window = 0.1;  // [s]
+  int order = 8;
+};
+
+// The measured data with its segments and smoothed kinematics, computed once.
+struct PreparedData {
+  PreparedData(const MeasuredData& data, const PreprocessOptions& options = {});
+  const MeasuredData& data;
+  std::vector<Segment> segments;
+  SmoothingDifferentiator differentiator;
+  Kinematics measured;  // smoothed measured angles and their derivatives
+};
+
+using ResidualMatrix = Eigen::Matrix<double, Eigen::Dynamic, kNumChannels, Eigen::RowMajor>;
+
+// Residuals of `robot` (with its sensor model, extras, payload, slope) on the samples whose
+// `rows` flag is set (other rows NaN).
+ResidualMatrix residuals(const PreparedData& prepared, const RobotParams& robot,
+                         const ModelOptions& model_options, const std::vector<char>& rows);
+
+// Open-loop forward simulation of each single-support segment of `rows` from its measured
+// initial state, driven by the measured torques (sensor model inverted): RMS over the samples
+// of simulated − measured α and joint angles [rad], per physical joint (index 0 = α, 1..4 =
+// knee_left..knee_right), and overall. Empty (size 0) without torque columns.
+Eigen::VectorXd simulationError(const PreparedData& prepared, const RobotParams& robot,
+                                const ModelOptions& model_options, const std::vector<char>& rows);
+
+}  // namespace gaitopt

@@ -1,0 +1,83 @@
+// `gaitopt diagnose`: what the model gets wrong on measured data, the cause, the extended model
+// and its gain on held-out steps.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "gaitopt/ident/diagnose.hpp"
+#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/robot_file.hpp"
+
+namespace gaitopt::cli {
+namespace {
+
+struct DiagnoseArgs {
+  std::string robot, data, out, effects;
+  int holdout = 3;
+};
+
+std::vector<EffectKind> parseKinds(const std::string& list) {
+  std::vector<EffectKind> kinds;
+  std::stringstream in(list);
+  std::string name;
+  while (std::getline(in, name, ',')) {
+    bool found = false;
+    for (int k = 0; k < kNumEffectKinds; ++k)
+      if (name == effectInfo(static_cast<EffectKind>(k)).name) {
+        kinds.push_back(static_cast<EffectKind>(k));
+        found = true;
+      }
+    if (!found) throw CLI::ValidationError("--effects", "unknown effect '" + name + "'");
+  }
+  return kinds;
+}
+
+}  // namespace
+
+void registerDiagnoseCommand(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<DiagnoseArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "diagnose",
+      "Compare a robot model with measured walking data: residuals, the significant cause(s), "
+      "an extended robot file and its gain on held-out steps. Writes DIR/{diagnosis.json, "
+      "residuals.csv, report.md, extended_robot.yaml}. Exit 2: bad input (nothing written).");
+  cmd->add_option("--robot", args->robot, "Nominal robot YAML file")->required();
+  cmd->add_option("--data", args->data, "Measured-data CSV file")->required();
+  cmd->add_option("--out", args->out, "Output directory (created if missing)")->required();
+  cmd->add_option("--holdout", args->holdout, "Hold out every K-th step (K >= 2, default 3)")
+      ->check(CLI::Range(2, 1000000));
+  cmd->add_option("--effects", args->effects,
+                  "Comma-separated candidate effects (default: all), e.g. coulomb,viscous");
+  cmd->callback([args, &exit_code]() {
+    DiagnoseOptions options;
+    options.holdout = args->holdout;
+    if (!args->effects.empty()) options.kinds = parseKinds(args->effects);
+    const RobotParams robot = loadRobot(args->robot);
+    const MeasuredData data = readMeasuredCsv(args->data);
+    requireDirectoryOrAbsent(args->out);
+    Diagnosis d;
+    try {
+      d = diagnose(robot, ModelOptions{}, data, options);
+    } catch (const std::invalid_argument& e) {
+      throw CLI::ValidationError("--holdout", e.what());
+    }
+    const std::filesystem::path dir(args->out);
+    const std::string report = diagnosisReport(d);
+    const std::string json = diagnosisJson(d), csv = residualsCsv(data, d);
+    const std::string yaml = extendedRobotYaml(args->robot, d.extended_robot);
+    std::filesystem::create_directories(dir);
+    writeFileAtomically((dir / "diagnosis.json").string(), json);
+    writeFileAtomically((dir / "residuals.csv").string(), csv);
+    writeFileAtomically((dir / "report.md").string(), report);
+    writeFileAtomically((dir / "extended_robot.yaml").string(), yaml);
+    const std::size_t first = report.find("\n\n") + 2;  // the sentence after the title
+    std::cout << report.substr(first, report.find('\n', first) - first) << "\n";
+    exit_code = 0;
+  });
+}
+
+}  // namespace gaitopt::cli

@@ -1,0 +1,545 @@
+#include "gaitopt/ident/diagnose.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <atomic>
+#include <functional>
+#include <thread>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace gaitopt {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double chi2Survival1(double x) { return x <= 0.0 ? 1.0 : std::erfc(std::sqrt(0.5 * x)); }
+
+double chi2Quantile1(double tail) {  // x with P(χ²₁ > x) = tail, by bisection
+  double lo = 0.0, hi = 200.0;
+  for (int i = 0; i < 100; ++i) (chi2Survival1(0.5 * (lo + hi)) > tail ? lo : hi) = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
+}
+
+double effectValue(EffectKind kind, double deviation) {
+  return effectInfo(kind).factor ? 1.0 + deviation : deviation;
+}
+
+struct Entry {
+  std::size_t row;
+  int channel;
+  int segment;
+};
+
+// One set of rows (fit or held-out steps) and its entries (row, channel), fixed from the
+// nominal model so that every model's residual vector has the same layout.
+struct Problem {
+  const PreparedData& prepared;
+  const RobotParams& nominal;
+  const ModelOptions& model_options;
+  std::vector<char> rows;
+  std::vector<Entry> entries;
+};
+
+std::vector<Entry> fitEntries(const PreparedData& p, const ResidualMatrix& r,
+                              const std::vector<char>& rows, double edge_trim) {
+  std::vector<Entry> out;
+  for (int c = 0; c < kNumChannels; ++c)
+    for (std::size_t s = 0; s < p.segments.size(); ++s) {
+      const Segment& seg = p.segments[s];
+      const bool ss = seg.phase == Phase::SingleSupport;
+      if (ss == (c == kFoot2z)) continue;  // SS dynamics, DS closure
+      for (std::size_t i = seg.begin; i < seg.end; ++i) {
+        if (!rows[i] || !std::isfinite(r(i, c))) continue;
+        const std::vector<double>& t = p.data.t;
+        if (ss && (t[i] - t[seg.begin] < edge_trim || t[seg.end - 1] - t[i] < edge_trim)) continue;
+        out.push_back({i, c, static_cast<int>(s)});
+      }
+    }
+  return out;
+}
+
+// φ = 1 + 2 Σ_k ρ_k over the positive head of the residual autocorrelation (lags in samples,
+// within one channel and segment): the variance inflation of a mean of correlated residuals.
+double inflation(const std::vector<Entry>& entries, const Eigen::VectorXd& r) {
+  const double r2 = r.squaredNorm();
+  if (r2 <= 0.0) return 1.0;
+  constexpr std::size_t kMaxLag = 150;
+  std::array<double, kMaxLag + 1> num{};
+  for (std::size_t a = 0; a < entries.size();) {  // runs of consecutive rows
+    std::size_t b = a + 1;
+    while (b < entries.size() && entries[b].channel == entries[a].channel &&
+           entries[b].segment == entries[a].segment && entries[b].row == entries[b - 1].row + 1)
+      ++b;
+    for (std::size_t k = 1; k <= kMaxLag && k < b - a; ++k)
+      num[k] += r.segment(a, b - a - k).dot(r.segment(a + k, b - a - k));
+    a = b;
+  }
+  double phi = 1.0;
+  for (std::size_t k = 1; k <= kMaxLag && num[k] > 0.0; ++k) phi += 2.0 * num[k] / r2;
+  return phi;
+}
+
+// Runs body(i) for i in [0, n) on up to two threads (the candidates are independent).
+void parallelFor(int n, const std::function<void(int)>& body) {
+  const int workers = std::max(1u, std::min(2u, std::thread::hardware_concurrency()));
+  std::atomic<int> next{0};
+  std::vector<std::thread> pool;
+  for (int w = 1; w < workers; ++w)
+    pool.emplace_back([&] { for (int i; (i = next++) < n;) body(i); });
+  for (int i; (i = next++) < n;) body(i);
+  for (std::thread& t : pool) t.join();
+}
+
+// Residuals of one model on the fit and held-out entries, unweighted.
+struct Evaluation {
+  Eigen::VectorXd fit, held;
+};
+
+// The linearised problem: residual(p) ≈ r0 + Σ_c D_c p_c with D_c the finite-difference column
+// of candidate c at the nominal model (exact for the effects linear in their parameter).
+struct Linearisation {
+  Evaluation r0;
+  std::vector<Effect> candidates;
+  std::vector<Evaluation> columns;
+};
+
+struct Fit {
+  std::vector<Effect> effects;
+  Evaluation r;
+  Eigen::MatrixXd JtJ;  // weighted, fit entries
+};
+
+std::vector<Effect> candidateEffects(const DiagnoseOptions& o, const MeasuredData& d) {
+  std::vector<Effect> out;
+  for (int k = 0; k < kNumEffectKinds; ++k) {
+    const EffectKind kind = static_cast<EffectKind>(k);
+    const EffectInfo& info = effectInfo(kind);
+    if (!o.kinds.empty() && std::find(o.kinds.begin(), o.kinds.end(), kind) == o.kinds.end()) continue;
+    if (info.needs_torque && !d.has_torque) continue;
+    const double neutral = info.factor ? 1.0 : 0.0;
+    if (!info.per_joint) {
+      out.push_back({kind, kNoJoint, neutral});
+      continue;
+    }
+    for (int j = 0; j < 4; ++j) out.push_back({kind, j, neutral});
+    if (kind == EffectKind::EncoderOffset) out.push_back({kind, kAlphaJoint, neutral});
+  }
+  return out;
+}
+
+bool sameCandidate(const Effect& a, const Effect& b) { return a.kind == b.kind && a.joint == b.joint; }
+
+std::array<double, kNumChannels> channelSigma(const Problem& pb, const ResidualMatrix& r) {
+  std::array<double, kNumChannels> sum{}, n{}, sigma{};
+  for (const Entry& e : pb.entries) {
+    const double x = r(e.row, e.channel);
+    if (!std::isfinite(x)) continue;
+    sum[e.channel] += x * x;
+    n[e.channel] += 1.0;
+  }
+  for (int c = 0; c < kNumChannels; ++c)
+    sigma[c] = n[c] > 0.0 && sum[c] > 0.0 ? std::sqrt(sum[c] / n[c]) : 1.0;
+  return sigma;
+}
+
+Eigen::VectorXd weightedVector(const std::vector<Entry>& entries, const Eigen::VectorXd& raw,
+                               const std::array<double, kNumChannels>& sigma) {
+  Eigen::VectorXd v(raw.size());
+  for (Eigen::Index e = 0; e < raw.size(); ++e) v(e) = raw(e) / sigma[entries[e].channel];
+  return v;
+}
+
+Eigen::VectorXd entryValues(const std::vector<Entry>& entries, const ResidualMatrix& r) {
+  Eigen::VectorXd v(entries.size());
+  for (std::size_t e = 0; e < entries.size(); ++e) {
+    const double x = r(entries[e].row, entries[e].channel);
+    v(e) = std::isfinite(x) ? x : 0.0;
+  }
+  return v;
+}
+
+struct Context {
+  const Problem& fit;
+  const Problem& held;
+  Evaluation evaluate(const std::vector<Effect>& effects) const {
+    const std::vector<char> all(fit.prepared.data.size(), 1);
+    const ResidualMatrix r =
+        residuals(fit.prepared, withEffects(fit.nominal, effects), fit.model_options, all);
+    return {entryValues(fit.entries, r), entryValues(held.entries, r)};
+  }
+};
+
+Linearisation linearise(const Context& ctx, const std::vector<Effect>& candidates,
+                        const Evaluation& r0) {
+  Linearisation lin{r0, candidates, std::vector<Evaluation>(candidates.size())};
+  parallelFor(static_cast<int>(candidates.size()), [&](int i) {
+    Effect e = candidates[i];
+    const double h = effectInfo(e.kind).step;
+    e.value = effectValue(e.kind, h);
+    const Evaluation r = ctx.evaluate({e});
+    lin.columns[i] = {(r.fit - r0.fit) / h, (r.held - r0.held) / h};
+  });
+  return lin;
+}
+
+// Chord (frozen-Jacobian Gauss–Newton) iterations from the linearised solution: one model
+// evaluation per iteration; exact after one for effects linear in their parameter.
+Fit chordFit(const Context& ctx, const Linearisation& lin, const std::vector<int>& which,
+             const std::array<double, kNumChannels>& sigma, int iterations) {
+  const int k = static_cast<int>(which.size());
+  const std::vector<Entry>& entries = ctx.fit.entries;
+  Eigen::MatrixXd J(entries.size(), k);
+  for (int i = 0; i < k; ++i) J.col(i) = weightedVector(entries, lin.columns[which[i]].fit, sigma);
+  Fit f;
+  f.JtJ = J.transpose() * J;
+  const Eigen::LDLT<Eigen::MatrixXd> solver(f.JtJ);
+  Eigen::VectorXd p = Eigen::VectorXd::Zero(k);
+  Eigen::VectorXd r = weightedVector(entries, lin.r0.fit, sigma);
+  f.r = lin.r0;
+  const auto effectsAt = [&](const Eigen::VectorXd& x) {
+    std::vector<Effect> e;
+    for (int i = 0; i < k; ++i) {
+      Effect c = lin.candidates[which[i]];
+      c.value = effectValue(c.kind, x(i));
+      e.push_back(c);
+    }
+    return e;
+  };
+  const bool linear = std::all_of(which.begin(), which.end(),
+                                  [&](int c) { return effectInfo(lin.candidates[c].kind).linear; });
+  if (linear && iterations > 0) {  // the linearisation is exact: no model evaluation needed
+    p = solver.solve(-J.transpose() * r);
+    for (int i = 0; i < k; ++i) {
+      f.r.fit += lin.columns[which[i]].fit * p(i);
+      f.r.held += lin.columns[which[i]].held * p(i);
+    }
+    iterations = 0;
+  }
+  for (int it = 0; it < iterations; ++it) {
+    const Eigen::VectorXd delta = solver.solve(-J.transpose() * r);
+    const Evaluation trial = ctx.evaluate(effectsAt(p + delta));
+    const Eigen::VectorXd rt = weightedVector(entries, trial.fit, sigma);
+    if (it > 0 && rt.squaredNorm() >= r.squaredNorm()) break;
+    p += delta;
+    r = rt;
+    f.r = trial;
+    double change = 0.0;
+    for (int i = 0; i < k; ++i)
+      change = std::max(change, std::abs(delta(i)) / effectInfo(lin.candidates[which[i]].kind).step);
+    if (change < 1e-3) break;
+  }
+  f.effects = effectsAt(p);
+  return f;
+}
+
+// RMS per channel over the reliable entries (those the fit uses) of `entries_a` ∪ `entries_b`,
+// per phase over every sample of `rows`, relative to the measured signal's RMS.
+// Gauss–Newton iterations with the Jacobian recomputed at the current point (forward
+// differences): removes the bias the frozen Jacobian leaves for effects nonlinear in their
+// parameter (payload through (1.24), encoder offsets, backlash, slope).
+Fit gaussNewton(const Context& ctx, Fit f, const std::array<double, kNumChannels>& sigma,
+                int iterations) {
+  const int k = static_cast<int>(f.effects.size());
+  const std::vector<Entry>& entries = ctx.fit.entries;
+  if (std::all_of(f.effects.begin(), f.effects.end(),
+                  [](const Effect& e) { return effectInfo(e.kind).linear; })) {
+    // Exact in one weighted LS step from the columns (they do not depend on the point).
+    return f;
+  }
+  Eigen::VectorXd r = weightedVector(entries, f.r.fit, sigma);
+  for (int it = 0; it < iterations; ++it) {
+    Eigen::MatrixXd J(entries.size(), k);
+    for (int i = 0; i < k; ++i) {
+      std::vector<Effect> e = f.effects;
+      const EffectInfo& info = effectInfo(e[i].kind);
+      const double h = 0.1 * info.step;
+      e[i].value += h;
+      J.col(i) = (weightedVector(entries, ctx.evaluate(e).fit, sigma) - r) / h;
+    }
+    const Eigen::MatrixXd JtJ = J.transpose() * J;
+    const Eigen::VectorXd delta = JtJ.ldlt().solve(-J.transpose() * r);
+    std::vector<Effect> e = f.effects;
+    for (int i = 0; i < k; ++i) e[i].value += delta(i);
+    const Evaluation trial = ctx.evaluate(e);
+    const Eigen::VectorXd rt = weightedVector(entries, trial.fit, sigma);
+    if (rt.squaredNorm() >= r.squaredNorm()) break;
+    f = {e, trial, JtJ};
+    r = rt;
+  }
+  return f;
+}
+
+ChannelReport channelReport(const PreparedData& p, const std::vector<Entry>& entries_a,
+                            const std::vector<Entry>& entries_b, const ResidualMatrix& r,
+                            const std::vector<char>& rows, const RobotParams& robot,
+                            const ModelOptions& mo) {
+  ChannelReport rep;
+  const MeasuredData& d = p.data;
+  std::array<double, kNumChannels> s{}, n{}, signal{};
+  for (const auto* entries : {&entries_a, &entries_b})
+    for (const Entry& e : *entries) {
+      const double x = r(e.row, e.channel);
+      if (!std::isfinite(x)) continue;
+      s[e.channel] += x * x;
+      n[e.channel] += 1.0;
+      const int c = e.channel;
+      if (c >= kGammaKneeLeft && c <= kGammaKneeRight) {
+        for (int j = 0; j < 4; ++j)
+          if (kGammaKneeLeft + physicalJointOfMotor(j, d.stance[e.row]) == c)
+            signal[c] += d.gamma[e.row](j) * d.gamma[e.row](j);
+      } else if (c >= kR1x && c <= kR2z) {
+        signal[c] += d.reactions[e.row](c - kR1x) * d.reactions[e.row](c - kR1x);
+      }
+    }
+  for (int c = 0; c < kNumChannels; ++c) {
+    rep.rms[c] = n[c] > 0 ? std::sqrt(s[c] / n[c]) : kNaN;
+    rep.relative_rms[c] = signal[c] > 0.0 ? std::sqrt(s[c] / signal[c]) : kNaN;
+    double ph[2] = {0, 0}, np[2] = {0, 0};
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      if (!rows[i] || !std::isfinite(r(i, c))) continue;
+      const int k = d.phase[i] == Phase::SingleSupport ? 0 : 1;
+      ph[k] += r(i, c) * r(i, c);
+      np[k] += 1.0;
+    }
+    rep.rms_ss[c] = np[0] > 0 ? std::sqrt(ph[0] / np[0]) : kNaN;
+    rep.rms_ds[c] = np[1] > 0 ? std::sqrt(ph[1] / np[1]) : kNaN;
+  }
+  rep.simulation_error = simulationError(p, robot, mo, rows);
+  return rep;
+}
+
+double pct(double before, double after) {
+  return before > 0.0 && std::isfinite(before) && std::isfinite(after)
+             ? 100.0 * (1.0 - after / before)
+             : kNaN;
+}
+
+}  // namespace
+
+namespace {
+
+ResidualMatrix fitMatrix(std::size_t rows, const std::vector<Entry>& entries,
+                         const Eigen::VectorXd& values) {
+  ResidualMatrix m = ResidualMatrix::Constant(rows, kNumChannels, kNaN);
+  for (std::size_t e = 0; e < entries.size(); ++e) m(entries[e].row, entries[e].channel) = values(e);
+  return m;
+}
+
+struct Scored {
+  std::vector<int> which;  // candidate indices of the model
+  CandidateResult result;
+  Fit fit;
+  double phi = 1.0, s2 = 1.0;
+};
+
+// Statistics of a fitted model against the base (the accepted effects) of its round.
+// The inflation φ of each channel, weighted by that channel's share of the RSS reduction: the
+// autocorrelation that matters is that of the channels carrying the effect.
+double signalInflation(const std::vector<Entry>& entries, const Eigen::VectorXd& base,
+                       const Eigen::VectorXd& r) {
+  std::array<std::vector<Entry>, kNumChannels> e;
+  std::array<std::vector<double>, kNumChannels> v;
+  std::array<double, kNumChannels> drop{};
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const int c = entries[i].channel;
+    e[c].push_back(entries[i]);
+    v[c].push_back(r(i));
+    drop[c] += base(i) * base(i) - r(i) * r(i);
+  }
+  double num = 0.0, den = 0.0;
+  for (int c = 0; c < kNumChannels; ++c) {
+    if (e[c].empty() || drop[c] <= 0.0) continue;
+    num += drop[c] * inflation(e[c], Eigen::Map<const Eigen::VectorXd>(v[c].data(), v[c].size()));
+    den += drop[c];
+  }
+  return den > 0.0 ? num / den : inflation(entries, r);
+}
+
+Scored score(const Context& ctx, Fit f, const std::array<double, kNumChannels>& sigma,
+             double rss_base, double n, const Eigen::VectorXd& base) {
+  Scored s;
+  const Eigen::VectorXd r = weightedVector(ctx.fit.entries, f.r.fit, sigma);
+  const double k = static_cast<double>(f.effects.size());
+  s.phi = signalInflation(ctx.fit.entries, base, r);
+  s.s2 = r.squaredNorm() / std::max(1.0, n - k);
+  CandidateResult& c = s.result;
+  c.all = f.effects;
+  c.effect = f.effects.back();
+  c.rss = r.squaredNorm();
+  c.bic = n / s.phi * std::log(c.rss / n) + k * std::log(n / s.phi);
+  const Eigen::MatrixXd cov = f.JtJ.ldlt().solve(Eigen::MatrixXd::Identity(f.JtJ.rows(), f.JtJ.cols()));
+  c.stderr_ = std::sqrt(std::max(0.0, s.phi * s.s2 * cov(cov.rows() - 1, cov.cols() - 1)));
+  c.p_value = chi2Survival1((rss_base - c.rss) / (s.phi * s.s2));
+  const Eigen::VectorXd h = weightedVector(ctx.held.entries, f.r.held, sigma);
+  c.holdout_rms = std::sqrt(h.squaredNorm() / std::max<Eigen::Index>(1, h.size()));
+  s.fit = std::move(f);
+  return s;
+}
+
+std::vector<char> holdoutRows(const MeasuredData& data, int holdout, bool held) {
+  std::vector<char> rows(data.size(), 0);
+  int ordinal = -1;
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    if (i == 0 || data.step[i] != data.step[i - 1]) ++ordinal;
+    rows[i] = (ordinal % holdout == holdout - 1) == held;
+  }
+  return rows;
+}
+
+// Largest relative reduction of a channel's held-out RMS from `before` to `after` [%].
+double bestChannelGain(const std::vector<Entry>& entries, const Eigen::VectorXd& before,
+                       const Eigen::VectorXd& after) {
+  std::array<double, kNumChannels> b{}, a{};
+  for (std::size_t e = 0; e < entries.size(); ++e) {
+    b[entries[e].channel] += before(e) * before(e);
+    a[entries[e].channel] += after(e) * after(e);
+  }
+  double best = -1e300;
+  for (int c = 0; c < kNumChannels; ++c)
+    if (b[c] > 0.0) best = std::max(best, 100.0 * (1.0 - std::sqrt(a[c] / b[c])));
+  return best;
+}
+
+constexpr int kRefined = 3;      // candidates refined per round (best linearised RSS)
+constexpr int kIterations = 4;   // chord iterations per refinement
+
+}  // namespace
+
+Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const MeasuredData& data,
+                   const DiagnoseOptions& o) {
+  if (o.holdout < 2) throw std::invalid_argument("--holdout must be >= 2");
+  const PreparedData prepared(data, o.preprocess);
+  Diagnosis dg;
+  dg.fit_rows = holdoutRows(data, o.holdout, false);
+  dg.holdout_rows = holdoutRows(data, o.holdout, true);
+  const std::vector<char> all(data.size(), 1);
+  dg.nominal_residuals = residuals(prepared, robot, mo, all);
+  const Problem fit{prepared, robot, mo, dg.fit_rows,
+                    fitEntries(prepared, dg.nominal_residuals, dg.fit_rows, o.edge_trim)};
+  const Problem held{prepared, robot, mo, dg.holdout_rows,
+                     fitEntries(prepared, dg.nominal_residuals, dg.holdout_rows, o.edge_trim)};
+  if (fit.entries.empty() || held.entries.empty())
+    throw std::invalid_argument("no fit or no held-out samples (too few steps for --holdout)");
+  const Context ctx{fit, held};
+  const double n = static_cast<double>(fit.entries.size());
+  const Evaluation r0{entryValues(fit.entries, dg.nominal_residuals),
+                      entryValues(held.entries, dg.nominal_residuals)};
+  const Linearisation lin = linearise(ctx, candidateEffects(o, data), r0);
+  std::array<double, kNumChannels> sigma = channelSigma(fit, dg.nominal_residuals);
+  std::vector<int> accepted, confounded;
+  Fit base{{}, r0, {}};
+  while (static_cast<int>(accepted.size()) < o.max_causes) {
+    sigma = channelSigma(fit, fitMatrix(data.size(), fit.entries, base.r.fit));  // current model
+    const Eigen::VectorXd rb = weightedVector(fit.entries, base.r.fit, sigma);
+    const double rss_base = rb.squaredNorm();
+    // Screening: each remaining candidate with the accepted ones, linearised (one LS solve).
+    std::vector<std::pair<double, int>> order;
+    for (int c = 0; c < static_cast<int>(lin.candidates.size()); ++c) {
+      if (std::find(accepted.begin(), accepted.end(), c) != accepted.end() ||
+          std::find(confounded.begin(), confounded.end(), c) != confounded.end())
+        continue;  // in a cause already, or in its class
+      std::vector<int> which = accepted;
+      which.push_back(c);
+      Eigen::MatrixXd J(fit.entries.size(), which.size());
+      for (std::size_t i = 0; i < which.size(); ++i)
+        J.col(i) = weightedVector(fit.entries, lin.columns[which[i]].fit, sigma);
+      const Eigen::VectorXd r0w = weightedVector(fit.entries, r0.fit, sigma);
+      const Eigen::VectorXd p = (J.transpose() * J).ldlt().solve(-J.transpose() * r0w);
+      order.push_back({(r0w + J * p).squaredNorm(), c});
+    }
+    if (order.empty()) break;
+    std::sort(order.begin(), order.end());
+    // Refinement of the best candidates on the full model.
+    const int refined = std::min<int>(kRefined, order.size());
+    std::vector<Scored> scored(refined);
+    parallelFor(refined, [&](int i) {
+      std::vector<int> which = accepted;
+      which.push_back(order[i].second);
+      scored[i] = score(ctx, chordFit(ctx, lin, which, sigma, kIterations), sigma, rss_base, n, rb);
+      scored[i].which = which;
+    });
+    if (accepted.empty()) {
+      for (const Scored& s : scored) dg.candidates.push_back(s.result);
+      for (std::size_t i = refined; i < order.size(); ++i) {  // linearised only
+        const std::vector<int> which{order[i].second};
+        Fit f = chordFit(ctx, lin, which, sigma, 0);
+        const Eigen::MatrixXd J = weightedVector(fit.entries, lin.columns[which[0]].fit, sigma);
+        const double p = -(J.col(0).dot(weightedVector(fit.entries, r0.fit, sigma))) / J.squaredNorm();
+        f.effects[0].value = effectValue(f.effects[0].kind, p);
+        f.r = {r0.fit + lin.columns[which[0]].fit * p, r0.held + lin.columns[which[0]].held * p};
+        dg.candidates.push_back(score(ctx, f, sigma, rss_base, n, rb).result);
+      }
+    }
+    const auto best = std::min_element(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) {
+      return a.result.bic < b.result.bic;
+    });
+    // The class of the best: candidates statistically indistinguishable from it.
+    Cause cause{best->result.effect, 0.0, 1.0, {}};
+    const double threshold = chi2Quantile1(o.significance);
+    std::vector<int> cls;
+    for (const Scored& s : scored)
+      if (&s != &*best && s.result.p_value < o.significance &&
+          s.result.bic - best->result.bic < threshold) {
+        cause.confounded_with.push_back(effectLabel(s.result.effect));
+        for (int c = 0; c < static_cast<int>(lin.candidates.size()); ++c)
+          if (sameCandidate(lin.candidates[c], s.result.effect)) cls.push_back(c);
+      }
+    // Reweight with the noise levels the best model leaves (the current model's are
+    // conservative where the effect acts) and refit it by Gauss–Newton before testing.
+    sigma = channelSigma(fit, fitMatrix(data.size(), fit.entries, best->fit.r.fit));
+    const Eigen::VectorXd rb2 = weightedVector(fit.entries, base.r.fit, sigma);
+    const Eigen::VectorXd hb2 = weightedVector(held.entries, base.r.held, sigma);
+    const Fit refit = std::all_of(best->which.begin(), best->which.end(),
+                                  [&](int c) { return effectInfo(lin.candidates[c].kind).linear; })
+                          ? chordFit(ctx, lin, best->which, sigma, 1)
+                          : gaussNewton(ctx, best->fit, sigma, 3);
+    const std::vector<int> best_which = best->which;
+    *best = score(ctx, refit, sigma, rb2.squaredNorm(), n, rb2);
+    best->which = best_which;
+    const CandidateResult& br = best->result;
+    if (!(br.p_value < o.significance &&
+          br.holdout_rms < std::sqrt(hb2.squaredNorm() / hb2.size()) &&
+          bestChannelGain(held.entries, base.r.held, best->fit.r.held) >= o.min_channel_gain))
+      break;
+    cause.effect = br.effect;
+    cause.stderr_ = br.stderr_;
+    cause.p_value = br.p_value;
+    confounded.insert(confounded.end(), cls.begin(), cls.end());
+    dg.causes.push_back(cause);
+    for (const Effect& e : br.all)
+      for (int c = 0; c < static_cast<int>(lin.candidates.size()); ++c)
+        if (sameCandidate(e, lin.candidates[c]) &&
+            std::find(accepted.begin(), accepted.end(), c) == accepted.end())
+          accepted.push_back(c);
+    // Converge the accepted model, so that the next round credits a candidate only with what
+    // it adds, not with a better fit of the effects already accepted.
+    base = gaussNewton(ctx, best->fit, sigma, 3);
+  }
+  for (std::size_t i = 0; i < dg.causes.size(); ++i) dg.causes[i].effect.value = base.effects[i].value;
+  dg.extended_robot = withEffects(robot, base.effects);
+  dg.extended_residuals = residuals(prepared, dg.extended_robot, mo, all);
+  dg.nominal_all = channelReport(prepared, fit.entries, held.entries, dg.nominal_residuals, all, robot, mo);
+  dg.nominal = channelReport(prepared, {}, held.entries, dg.nominal_residuals, dg.holdout_rows, robot, mo);
+  dg.extended = channelReport(prepared, {}, held.entries, dg.extended_residuals, dg.holdout_rows,
+                              dg.extended_robot, mo);
+  const Eigen::VectorXd hn = weightedVector(held.entries, entryValues(held.entries, dg.nominal_residuals), sigma);
+  const Eigen::VectorXd he = weightedVector(held.entries, entryValues(held.entries, dg.extended_residuals), sigma);
+  dg.nominal.normalised_rms = std::sqrt(hn.squaredNorm() / hn.size());
+  dg.extended.normalised_rms = std::sqrt(he.squaredNorm() / he.size());
+  for (int c = 0; c < kNumChannels; ++c)
+    dg.rms_reduction_pct[c] = pct(dg.nominal.rms[c], dg.extended.rms[c]);
+  dg.overall_pct = pct(dg.nominal.normalised_rms, dg.extended.normalised_rms);
+  const auto& sn = dg.nominal.simulation_error;
+  const auto& se = dg.extended.simulation_error;
+  dg.simulation_error_reduction_pct = sn.size() ? pct(sn(5), se(5)) : kNaN;
+  dg.smoothing = "local polynomial (Savitzky-Golay) fit of degree " +
+                 std::to_string(o.preprocess.order) + " over +-" +
+                 std::to_string(static_cast<int>(std::round(o.preprocess.half_window * 1000))) +
+                 " ms per phase segment, one-sided at segment ends";
+  return dg;
+}
+
+}  // namespace gaitopt

@@ -1,0 +1,213 @@
+// The documents `gaitopt diagnose` writes: diagnosis.json, residuals.csv, report.md and
+// extended_robot.yaml (ident/diagnose.hpp).
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "gaitopt/ident/diagnose.hpp"
+#include "gaitopt/io/json_writer.hpp"
+#include "gaitopt/io/robot_extensions.hpp"
+#include "gaitopt/io/yaml_reader.hpp"
+
+namespace gaitopt {
+
+namespace {
+
+const std::array<const char*, 6> kSimulationNames = {"alpha",     "knee_left",  "hip_left",
+                                                     "hip_right", "knee_right", "overall"};
+
+void channelMap(JsonWriter& w, const std::string& key, const std::array<double, kNumChannels>& v) {
+  w.key(key).beginObject();
+  for (int c = 0; c < kNumChannels; ++c) w.key(kChannelNames[c]).value(v[c]);
+  w.endObject();
+}
+
+void channelReportJson(JsonWriter& w, const ChannelReport& r) {
+  w.beginObject();
+  channelMap(w, "rms", r.rms);
+  channelMap(w, "relative_rms", r.relative_rms);
+  channelMap(w, "rms_ss", r.rms_ss);
+  channelMap(w, "rms_ds", r.rms_ds);
+  w.key("normalised_rms").value(r.normalised_rms);
+  w.key("simulation_error");
+  if (r.simulation_error.size() == 0) {
+    w.null();
+  } else {
+    w.beginObject();
+    for (int k = 0; k < 6; ++k) w.key(kSimulationNames[k]).value(r.simulation_error(k));
+    w.endObject();
+  }
+  w.endObject();
+}
+
+void jointValue(JsonWriter& w, const Effect& e) {
+  w.key("effect").value(effectInfo(e.kind).name).key("joint");
+  if (e.joint == kNoJoint) w.null(); else w.value(jointName(e.joint));
+  w.key("value").value(e.value);
+}
+
+std::string fmt(double v, const char* f = "%.3g") {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+std::string jointPhrase(int channel) {
+  static const std::array<const char*, kNumChannels> phrases = {
+      "single-support foot moment (alpha row)", "left-knee torque", "left-hip torque",
+      "right-hip torque", "right-knee torque", "horizontal stance-foot reaction",
+      "vertical stance-foot reaction", "horizontal rear-foot reaction",
+      "vertical rear-foot reaction", "rear-foot height in double support"};
+  return phrases[channel];
+}
+
+std::string causePhrase(const Cause& c) {
+  const EffectInfo& info = effectInfo(c.effect.kind);
+  const std::string value = fmt(c.effect.value) + " ± " + fmt(c.stderr_, "%.2g");
+  const std::string on = c.effect.joint == kNoJoint ? "" : " on " + jointName(c.effect.joint);
+  switch (c.effect.kind) {
+    case EffectKind::Coulomb: return "an extra Coulomb friction of " + value + " N·m" + on;
+    case EffectKind::Viscous: return "an extra viscous friction of " + value + " N·m·s/rad" + on;
+    case EffectKind::RotorInertia: return "a rotor inertia " + value + " times the nominal" + on;
+    case EffectKind::TorqueOffset: return "a torque-sensor offset of " + value + " N·m" + on;
+    case EffectKind::TorqueGain: return "a torque-sensor gain of " + value + on;
+    case EffectKind::EncoderOffset: return "an encoder offset of " + value + " rad" + on;
+    case EffectKind::Backlash: return "a backlash of " + value + " rad" + on;
+    case EffectKind::Payload: return "an extra mass of " + value + " kg at the hip";
+    case EffectKind::TrunkCom: return "a trunk centre of mass moved by " + value + " m along the trunk";
+    case EffectKind::Slope: return "a ground slope of " + value + " rad";
+  }
+  return info.name;
+}
+
+}  // namespace
+
+std::string diagnosisJson(const Diagnosis& d) {
+  JsonWriter w;
+  w.beginObject();
+  w.key("smoothing").value(d.smoothing);
+  w.key("nominal");
+  channelReportJson(w, d.nominal);
+  w.key("nominal_all_steps");
+  channelReportJson(w, d.nominal_all);
+  w.key("cause").beginArray();
+  for (const Cause& c : d.causes) {
+    w.beginObject();
+    jointValue(w, c.effect);
+    w.key("stderr").value(c.stderr_).key("unit").value(effectInfo(c.effect.kind).unit);
+    w.key("p_value").value(c.p_value);
+    w.key("confounded_with").beginArray();
+    for (const std::string& s : c.confounded_with) w.value(s);
+    w.endArray().endObject();
+  }
+  w.endArray();
+  w.key("candidates").beginArray();
+  for (const CandidateResult& c : d.candidates) {
+    w.beginObject();
+    jointValue(w, c.effect);
+    w.key("stderr").value(c.stderr_).key("bic").value(c.bic).key("holdout_rms").value(c.holdout_rms);
+    w.key("p_value").value(c.p_value).endObject();
+  }
+  w.endArray();
+  w.key("extended");
+  channelReportJson(w, d.extended);
+  w.key("gain").beginObject();
+  channelMap(w, "rms_reduction_pct", d.rms_reduction_pct);
+  w.key("overall_pct").value(d.overall_pct);
+  w.key("simulation_error_reduction_pct").value(d.simulation_error_reduction_pct);
+  w.endObject().endObject();
+  return w.str() + "\n";
+}
+
+std::string residualsCsv(const MeasuredData& data, const Diagnosis& d) {
+  std::ostringstream out;
+  out << "t,step,phase,stance,heldout";
+  for (const char* tag : {"nominal", "extended"})
+    for (int c = 0; c < kNumChannels; ++c) out << ',' << kChannelNames[c] << '_' << tag;
+  out << '\n';
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    out << formatDouble(data.t[i]) << ',' << data.step[i] << ','
+        << (data.phase[i] == Phase::SingleSupport ? "SS" : "DS") << ','
+        << (data.stance[i] == Stance::Left ? "left" : "right") << ','
+        << (d.holdout_rows[i] ? 1 : 0);
+    for (const ResidualMatrix* r : {&d.nominal_residuals, &d.extended_residuals})
+      for (int c = 0; c < kNumChannels; ++c) {
+        const double v = (*r)(i, c);
+        out << ',' << (std::isfinite(v) ? formatDouble(v) : "");
+      }
+    out << '\n';
+  }
+  return out.str();
+}
+
+std::string diagnosisReport(const Diagnosis& d) {
+  std::ostringstream out;
+  out << "# Diagnosis\n\n";
+  if (d.causes.empty()) {
+    out << "The model's predictions agree with the measurements within the noise: no candidate "
+           "effect is significant at 1 % with a held-out gain.\n\n";
+  } else {
+    // The channel the first cause changes most (nominal − extended RMS on held-out steps).
+    int channel = 0;
+    double change = -1.0;
+    for (int c = 0; c < kNumChannels; ++c) {
+      const double delta = d.nominal.rms[c] - d.extended.rms[c];
+      if (std::isfinite(delta) && delta / d.nominal.rms[c] > change) {
+        change = delta / d.nominal.rms[c];
+        channel = c;
+      }
+    }
+    double mean = 0.0, square = 0.0, n = 0.0;  // of the prediction change, held-out steps
+    for (Eigen::Index i = 0; i < d.nominal_residuals.rows(); ++i) {
+      const double a = d.nominal_residuals(i, channel), b = d.extended_residuals(i, channel);
+      if (std::isfinite(a) && std::isfinite(b) && d.holdout_rows[i]) {
+        mean += a - b;
+        square += (a - b) * (a - b);
+        n += 1.0;
+      }
+    }
+    mean /= std::max(1.0, n);
+    out << "The model " << (mean >= 0.0 ? "underestimates" : "overestimates") << " the "
+        << jointPhrase(channel) << " by " << fmt(std::sqrt(square / std::max(1.0, n))) << " "
+        << kChannelUnits[channel] << " (RMS): " << causePhrase(d.causes[0]) << " explains it";
+    for (std::size_t k = 1; k < d.causes.size(); ++k) out << ", with " << causePhrase(d.causes[k]);
+    out << "; predictions on held-out steps improve by " << fmt(d.overall_pct, "%.0f")
+        << " % overall (" << fmt(d.rms_reduction_pct[channel], "%.0f") << " % on that channel).\n\n";
+  }
+  out << "## Causes\n\n";
+  for (const Cause& c : d.causes) {
+    out << "- `" << effectLabel(c.effect) << "` = " << fmt(c.effect.value, "%.4g") << " ± "
+        << fmt(c.stderr_, "%.2g") << " " << effectInfo(c.effect.kind).unit << ", p = "
+        << fmt(c.p_value, "%.2g");
+    if (!c.confounded_with.empty()) {
+      out << "; the data cannot tell it from:";
+      for (const std::string& s : c.confounded_with) out << " `" << s << "`";
+    }
+    out << "\n";
+  }
+  if (d.causes.empty()) out << "none\n";
+  out << "\n## Held-out steps: RMS per channel (nominal → extended)\n\n"
+         "| channel | unit | nominal | extended | reduction % |\n|---|---|---|---|---|\n";
+  for (int c = 0; c < kNumChannels; ++c)
+    out << "| " << kChannelNames[c] << " | " << kChannelUnits[c] << " | " << fmt(d.nominal.rms[c])
+        << " | " << fmt(d.extended.rms[c]) << " | " << fmt(d.rms_reduction_pct[c], "%.1f") << " |\n";
+  if (d.nominal.simulation_error.size())
+    out << "\nOpen-loop single-support simulation error (RMS over all angles): "
+        << fmt(d.nominal.simulation_error(5)) << " rad → " << fmt(d.extended.simulation_error(5))
+        << " rad (" << fmt(d.simulation_error_reduction_pct, "%.0f") << " % lower).\n";
+  out << "\nPreprocessing: " << d.smoothing << ".\n";
+  return out.str();
+}
+
+std::string extendedRobotYaml(const std::string& robot_path, const RobotParams& extended) {
+  YAML::Node root = loadYamlFile(robot_path);
+  for (const char* key : {"joint_extras", "sensors", "hip_payload", "trunk_com_shift", "ground_slope"})
+    root.remove(key);
+  YAML::Emitter emit;
+  emit.SetDoublePrecision(17);
+  emit << root;
+  return "# " + robot_path + " extended by gaitopt diagnose with the identified effects\n" +
+         std::string(emit.c_str()) + "\n" + robotExtensionsYaml(extended);
+}
+
+}  // namespace gaitopt

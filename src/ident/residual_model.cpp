@@ -1,0 +1,191 @@
+#include "gaitopt/ident/residual_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "gaitopt/model/forward_dynamics.hpp"
+#include "gaitopt/model/inverse_dynamics.hpp"
+
+namespace gaitopt {
+
+const std::array<const char*, kNumChannels> kChannelNames = {
+    "alpha_row",        "gamma_knee_left", "gamma_hip_left", "gamma_hip_right",
+    "gamma_knee_right", "R1x",             "R1z",            "R2x",
+    "R2z",              "ds_foot2_z"};
+const std::array<const char*, kNumChannels> kChannelUnits = {
+    "N·m", "N·m", "N·m", "N·m", "N·m", "N", "N", "N", "N", "m"};
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+struct StanceModels {
+  Model model[2];
+  Vec4 gain[2], offset[2];
+  StanceModels(const RobotParams& robot, const ModelOptions& options) {
+    for (int s = 0; s < 2; ++s) {
+      const Stance stance = static_cast<Stance>(s);
+      model[s] = buildModel(stanceRobot(robot, stance), options);
+      for (int j = 0; j < 4; ++j) {
+        const int p = physicalJointOfMotor(j, stance);
+        gain[s](j) = robot.sensors.torque_gain[p];
+        offset[s](j) = robot.sensors.torque_offset[p];
+      }
+    }
+  }
+};
+
+bool hasBacklash(const SensorModel& s) {
+  for (double b : s.backlash)
+    if (b != 0.0) return true;
+  return false;
+}
+
+// Link kinematics from the measured ones: minus the constant encoder offsets, and minus the
+// backlash shift (a signal of the measured torques, differentiated by the same filter).
+Kinematics linkKinematics(const PreparedData& p, const RobotParams& robot,
+                          const StanceModels& sm) {
+  Kinematics k = p.measured;
+  const MeasuredData& d = p.data;
+  const SensorModel& s = robot.sensors;
+  std::vector<Vec5> shift(d.size());
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const int st = static_cast<int>(d.stance[i]);
+    Vec4 motor;
+    for (int j = 0; j < 4; ++j) motor(j) = s.encoder_offset[physicalJointOfMotor(j, d.stance[i])];
+    k.q[i] -= qFromMotorAngles(s.alpha_offset, motor);
+    if (d.has_torque && hasBacklash(s)) {
+      const Vec4 gamma = (d.gamma[i] - sm.offset[st]).cwiseQuotient(sm.gain[st]);
+      shift[i] = qFromMotorAngles(0.0, backlashShift(s, d.stance[i], gamma));
+    }
+  }
+  if (d.has_torque && hasBacklash(s)) {
+    const Kinematics b = differentiate(p.differentiator, shift);
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      k.q[i] -= b.q[i];
+      k.qd[i] -= b.qd[i];
+      k.qdd[i] -= b.qdd[i];
+    }
+  }
+  return k;
+}
+
+// Near a joint's velocity reversal the predicted Coulomb torque swings by 2 Γs within a few
+// hundredths of rad/s, so a small velocity error there gives a large spurious residual: those
+// samples say nothing reliable and are left out.
+constexpr double kReversalSpeed = 0.2;  // [rad/s], 4 × the default friction smoothing width
+
+void putGamma(const MeasuredData& d, std::size_t i, const Vec4& predicted, const Vec5& qd,
+              double* row) {
+  if (!d.has_torque) return;
+  const Vec4 omega = jointSpeeds(qd);
+  for (int j = 0; j < 4; ++j)
+    if (std::abs(omega(j)) >= kReversalSpeed)
+      row[kGammaKneeLeft + physicalJointOfMotor(j, d.stance[i])] = d.gamma[i](j) - predicted(j);
+}
+
+void singleSupportRow(const PreparedData& p, const StanceModels& sm, const Kinematics& k,
+                      std::size_t i, double* row) {
+  const MeasuredData& d = p.data;
+  const int st = static_cast<int>(d.stance[i]);
+  const Model& m = sm.model[st];
+  const PinnedMotionForces<double> f = pinnedMotionForces(m, chainState(m, k.q[i], k.qd[i]), k.qdd[i]);
+  row[kAlphaRow] = f.tau(0);
+  const Vec4 gamma = solveDGamma25(Vec4(f.tau.tail<4>())) +
+                     frictionTorque(m, jointSpeeds(k.qd[i]), SignMode::Smooth);  // (3.57)
+  putGamma(d, i, sm.gain[st].cwiseProduct(gamma) + sm.offset[st], k.qd[i], row);
+  if (d.has_reactions) {
+    const double M = m.total_mass;
+    const Vec4 predicted(M * f.com_acceleration(0), M * (f.com_acceleration(1) + m.gravity), 0, 0);
+    for (int c = 0; c < 4; ++c) row[kR1x + c] = d.reactions[i](c) - predicted(c);
+  }
+}
+
+void doubleSupportRow(const PreparedData& p, const StanceModels& sm, const Kinematics& k,
+                      double slope, std::size_t i, double* row) {
+  const MeasuredData& d = p.data;
+  const int st = static_cast<int>(d.stance[i]);
+  const Model& m = sm.model[st];
+  const PinnedMotionForces<double> f = pinnedMotionForces(m, chainState(m, k.q[i], k.qd[i]), k.qdd[i]);
+  const DoubleSupportAffine<double> a = doubleSupportAffine(m, f, k.qd[i], SignMode::Smooth);
+  double r2x;
+  if (d.has_reactions) {
+    r2x = d.reactions[i](2);
+  } else {  // the R2x that best explains the measured torques
+    const Vec4 gamma = (d.gamma[i] - sm.offset[st]).cwiseQuotient(sm.gain[st]);
+    r2x = a.K.dot(a.J - gamma) / a.K.squaredNorm();
+  }
+  putGamma(d, i, sm.gain[st].cwiseProduct(a.J - a.K * r2x) + sm.offset[st], k.qd[i], row);  // (3.62)
+  if (d.has_reactions) {
+    const double M = m.total_mass;
+    const double r2z = a.R2z0 + a.R2z_slope * r2x;  // (3.58)
+    row[kR1x] = d.reactions[i](0) - M * a.com_acceleration(0) + r2x;  // (3.59)
+    row[kR1z] = d.reactions[i](1) - (M * (a.com_acceleration(1) + m.gravity) - r2z);
+    row[kR2z] = d.reactions[i](3) - r2z;
+  }
+  row[kFoot2z] = f.foot2(1) - f.foot2(0) * std::tan(slope);
+}
+
+}  // namespace
+
+PreparedData::PreparedData(const MeasuredData& d, const PreprocessOptions& o)
+    : data(d),
+      segments(dataSegments(d)),
+      differentiator(d.t, segments, o.half_window, o.order),
+      measured(differentiate(differentiator, d.q)) {}
+
+ResidualMatrix residuals(const PreparedData& p, const RobotParams& robot,
+                         const ModelOptions& model_options, const std::vector<char>& rows) {
+  const StanceModels sm(robot, model_options);
+  const Kinematics k = linkKinematics(p, robot, sm);
+  ResidualMatrix r = ResidualMatrix::Constant(p.data.size(), kNumChannels, kNaN);
+  for (const Segment& s : p.segments)
+    for (std::size_t i = s.begin; i < s.end; ++i) {
+      if (!rows[i]) continue;
+      if (s.phase == Phase::SingleSupport)
+        singleSupportRow(p, sm, k, i, r.row(i).data());
+      else
+        doubleSupportRow(p, sm, k, robot.ground_slope, i, r.row(i).data());
+    }
+  return r;
+}
+
+Eigen::VectorXd simulationError(const PreparedData& p, const RobotParams& robot,
+                                const ModelOptions& model_options, const std::vector<char>& rows) {
+  const MeasuredData& d = p.data;
+  if (!d.has_torque) return Eigen::VectorXd();
+  const StanceModels sm(robot, model_options);
+  const Kinematics k = linkKinematics(p, robot, sm);
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(6);
+  double count = 0.0;
+  for (const Segment& s : p.segments) {
+    if (s.phase != Phase::SingleSupport || !rows[s.begin]) continue;
+    const int st = static_cast<int>(s.stance);
+    const auto torque = [&](double t, const PinnedState&) {  // measured, linearly interpolated
+      std::size_t i = s.begin;
+      while (i + 2 < s.end && d.t[i + 1] <= t) ++i;
+      const double w = std::clamp((t - d.t[i]) / (d.t[i + 1] - d.t[i]), 0.0, 1.0);
+      const Vec4 g = (1.0 - w) * d.gamma[i] + w * d.gamma[i + 1];
+      return Vec4((g - sm.offset[st]).cwiseQuotient(sm.gain[st]));
+    };
+    PinnedState x{k.q[s.begin], k.qd[s.begin]};
+    for (std::size_t i = s.begin + 1; i < s.end; ++i) {
+      const double t0 = d.t[i - 1];
+      const TorqueLaw law = [&](double t, const PinnedState& y) { return torque(t0 + t, y); };
+      x = simulateSS(sm.model[st], x, law, d.t[i] - t0, d.t[i] - t0, SignMode::Smooth);
+      const Vec5 e = x.q - k.q[i];
+      Vec4 joint;
+      for (int j = 0; j < 4; ++j)
+        joint(physicalJointOfMotor(j, s.stance)) = motorAngles(e)(j);
+      sum(0) += e(0) * e(0);
+      for (int j = 0; j < 4; ++j) sum(1 + j) += joint(j) * joint(j);
+      count += 1.0;
+    }
+  }
+  if (count == 0.0) return Eigen::VectorXd();
+  sum(5) = sum.head<5>().sum() / 5.0;
+  return (sum / count).cwiseSqrt();
+}
+
+}  // namespace gaitopt

@@ -1,0 +1,225 @@
+#include "gaitopt/ident/synth.hpp"
+
+#include <cmath>
+#include <optional>
+#include <random>
+#include <stdexcept>
+
+#include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/gait/evaluator_impl.hpp"
+#include "gaitopt/io/json_writer.hpp"
+#include "gaitopt/model/inverse_dynamics.hpp"
+
+namespace gaitopt {
+
+namespace {
+
+struct TrueSample {
+  Phase phase;
+  Vec5 q;  // gravity frame
+  Vec4 gamma_star;
+  Vec4 reactions;
+};
+
+// One step's gait variation: velocities, the interior SS point and T_DS move a little, the
+// DS/SS boundary configurations and the step length stay (the feet stay on the ground).
+GaitParameters varied(const GaitParameters& p, std::mt19937_64& rng, double scale) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  GaitParameters v = p;
+  v(kAlphadotISS) *= 1.0 + 0.04 * scale * u(rng);
+  for (int k : {kDelta1sISS, kDelta2sISS, kDelta1sFSS, kDelta2sFSS}) v(k) += 0.05 * scale * u(rng);
+  v(kDelta1Int) += 0.01 * scale * u(rng);
+  v(kTheta3Int) += 0.01 * scale * u(rng);
+  v(kZ2Int) += 0.003 * scale * u(rng);
+  v(kTDS) *= 1.0 + 0.05 * scale * u(rng);
+  return v;
+}
+
+Vec5 toGravityFrame(Vec5 q, double slope) {
+  q(0) += slope;  // the gait's frame is the ground's; α is measured from the vertical
+  return q;
+}
+
+TrueSample dsTrueSample(const Model& m, const GaitOptions& o, const GaitMotion<double>& mo,
+                        double t, double slope) {
+  const detail::PhaseSample<double> k = detail::dsSample(m, o, mo, t);
+  const Vec5 q = toGravityFrame(k.q, slope);
+  const DoubleSupportAffine<double> a = doubleSupportAffine(m, q, k.qd, k.qdd, SignMode::Smooth);
+  const double r2x = a.K.dot(a.J) / a.K.squaredNorm();  // min ‖J − K R2x‖² (3.60), unbounded
+  const DoubleSupportInverseDynamics<double> id =
+      inverseDynamicsDS(m, q, k.qd, k.qdd, r2x, SignMode::Smooth);
+  return {Phase::DoubleSupport, q, id.gamma_star, Vec4(id.R1(0), id.R1(1), id.R2(0), id.R2(1))};
+}
+
+// Zero dynamics of the SS path δ = h(α) (α-row of (1.32), no foot torque) in the gravity
+// frame: α̈ = −(τ_c α̇² + G)/τ_a with τ_a, τ_c slope-independent (relative angles only).
+struct ZeroDynamics {
+  const Model& m;
+  const GaitMotion<double>& mo;
+  double slope;
+  detail::SsPathPoint<double> point(double alpha) const {
+    return detail::ssPathPoint(m, mo, alpha);
+  }
+  double acceleration(const detail::SsPathPoint<double>& pt, double alphadot) const {
+    const ChainState<double> st =
+        chainState(m, toGravityFrame(pt.q, slope), Vec5(Vec5::Zero()));
+    const double g0 =
+        constantTimes(m.theta_map_transpose, chainGravityTheta(m.pinned, m.gravity, st))(0);
+    return -(pt.tau_c(0) * alphadot * alphadot + g0) / pt.tau_a(0);
+  }
+  Vec2 rate(const Vec2& x) const { return Vec2(x(1), acceleration(point(x(0)), x(1))); }
+  Vec2 advance(Vec2 x, double h) const {  // classical RK4
+    const Vec2 k1 = rate(x), k2 = rate(x + 0.5 * h * k1), k3 = rate(x + 0.5 * h * k2),
+               k4 = rate(x + h * k3);
+    return x + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+  }
+};
+
+TrueSample ssTrueSample(const Model& m, const ZeroDynamics& zd, const Vec2& x) {
+  const detail::SsPathPoint<double> pt = zd.point(x(0));
+  const double add = zd.acceleration(pt, x(1));
+  const Vec5 q = toGravityFrame(pt.q, zd.slope);
+  const Vec5 qd = pt.qs * x(1), qdd = pt.qs * add + pt.qss * x(1) * x(1);
+  const SingleSupportInverseDynamics<double> id =
+      inverseDynamicsSS(m, q, qd, qdd, SignMode::Smooth);
+  return {Phase::SingleSupport, q, id.gamma_star, Vec4(id.R1(0), id.R1(1), 0.0, 0.0)};
+}
+
+// Samples of one step at times k/rate from its start; empty if the TRUE zero dynamics stall.
+std::vector<TrueSample> stepSamples(const Model& m, const GaitOptions& o,
+                                    const GaitMotion<double>& mo, double slope, double rate) {
+  std::vector<TrueSample> out;
+  const double dt = 1.0 / rate;
+  int k = 0;
+  for (; k * dt < mo.T_DS; ++k) out.push_back(dsTrueSample(m, o, mo, k * dt, slope));
+  const ZeroDynamics zd{m, mo, slope};
+  const double direction = mo.alpha_fSS < mo.alpha_iSS ? -1.0 : 1.0;
+  Vec2 x(mo.alpha_iSS, mo.alphadot_iSS);
+  double t = mo.T_DS;
+  const double h_max = dt / 4.0;
+  for (;; ++k) {
+    const double target = k * dt;
+    const int n = std::max(1, static_cast<int>(std::ceil((target - t) / h_max - 1e-9)));
+    for (int i = 0; i < n; ++i) x = zd.advance(x, (target - t) / n);
+    t = target;
+    if (!(x(1) * direction > 0.0)) return {};  // the TRUE robot falls back
+    if ((x(0) - mo.alpha_fSS) * direction >= 0.0) break;
+    out.push_back(ssTrueSample(m, zd, x));
+  }
+  return out;
+}
+
+struct Noise {
+  std::mt19937_64 rng;
+  const SynthOptions& o;
+  double quantised(double angle) const {
+    if (!o.noise) return angle;
+    const double count = 2.0 * M_PI / o.encoder_counts;
+    return std::round(angle / count) * count;
+  }
+  Vec4 gaussian(double sigma) {
+    std::normal_distribution<double> n(0.0, sigma);
+    Vec4 v;
+    for (int j = 0; j < 4; ++j) v(j) = o.noise ? n(rng) : 0.0;
+    return v;
+  }
+};
+
+void appendMeasured(const SensorModel& sensors, Stance stance, long step, double t,
+                    const TrueSample& s, Noise& noise, MeasuredData& d) {
+  const SensorReading r = sensorReading(sensors, stance, s.q, s.gamma_star);
+  Vec4 motor = motorAngles(r.q);
+  for (int j = 0; j < 4; ++j) motor(j) = noise.quantised(motor(j));
+  d.t.push_back(t);
+  d.q.push_back(qFromMotorAngles(noise.quantised(r.q(0)), motor));
+  d.phase.push_back(s.phase);
+  d.stance.push_back(stance);
+  d.step.push_back(step);
+  d.gamma.push_back(r.gamma + noise.gaussian(noise.o.torque_noise));
+  d.reactions.push_back(s.reactions + noise.gaussian(noise.o.force_noise));
+}
+
+}  // namespace
+
+MeasuredData synthesize(const RobotParams& robot, const GaitParameters& gait,
+                        const GaitOptions& gait_options, const ModelOptions& model_options,
+                        const std::vector<Effect>& effects, const SynthOptions& options) {
+  const RobotParams truth = withEffects(robot, effects);
+  // The evaluators give each step's motion; the dynamics use the full TRUE models (an evaluator
+  // leaves Coulomb friction out of its model unless the gait asks for dry friction).
+  std::optional<GaitEvaluator> evaluators[2];
+  Model models[2];
+  for (Stance s : {Stance::Left, Stance::Right}) {
+    evaluators[static_cast<int>(s)].emplace(stanceRobot(truth, s), gait_options, model_options);
+    models[static_cast<int>(s)] = buildModel(stanceRobot(truth, s), model_options);
+  }
+  // Separate streams: the same seed gives the same motion with and without noise.
+  std::mt19937_64 excitation(options.seed);
+  Noise noise{std::mt19937_64(options.seed ^ 0x9E3779B97F4A7C15ULL), options};
+  MeasuredData d;
+  d.has_torque = d.has_reactions = true;
+  double t0 = 0.0;
+  for (int step = 0; step < options.steps; ++step) {
+    const Stance stance = step % 2 == 0 ? Stance::Left : Stance::Right;
+    const GaitEvaluator& ev = *evaluators[static_cast<int>(stance)];
+    std::vector<TrueSample> samples;
+    for (int attempt = 0; attempt < 40 && samples.empty(); ++attempt) {
+      const double scale = options.variation / (1.0 + attempt / 10);
+      const GaitEvaluation<double> e = ev.evaluate(varied(gait, excitation, scale));
+      if (e.motion_computed && !e.numerically_undefined)
+        samples = stepSamples(models[static_cast<int>(stance)], gait_options, e.motion, truth.ground_slope,
+                              options.rate);
+    }
+    if (samples.empty())
+      throw std::runtime_error("synth: step " + std::to_string(step) +
+                               ": no variation of the gait is walkable by the TRUE model");
+    for (std::size_t k = 0; k < samples.size(); ++k)
+      appendMeasured(truth.sensors, stance, step, t0 + k / options.rate, samples[k], noise, d);
+    t0 += samples.size() / options.rate;
+  }
+  return d;
+}
+
+Effect randomEffect(EffectKind kind, std::mt19937_64& rng) {
+  const auto u = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  const auto sign = [&] { return u(0.0, 1.0) < 0.5 ? -1.0 : 1.0; };
+  const auto joint = [&](int n) { return std::min(n - 1, static_cast<int>(u(0.0, n))); };
+  switch (kind) {
+    case EffectKind::Coulomb: return {kind, joint(4), u(1.0, 6.0)};
+    case EffectKind::Viscous: return {kind, joint(4), u(1.0, 6.0)};
+    case EffectKind::RotorInertia: return {kind, joint(4), u(1.3, 2.0)};
+    case EffectKind::TorqueOffset: return {kind, joint(4), sign() * u(1.0, 5.0)};
+    case EffectKind::TorqueGain:
+      return {kind, joint(4), u(0.0, 1.0) < 0.5 ? u(0.85, 0.95) : u(1.05, 1.2)};
+    case EffectKind::EncoderOffset: return {kind, joint(5), sign() * u(0.01, 0.05)};
+    case EffectKind::Backlash: return {kind, joint(4), u(0.01, 0.04)};
+    case EffectKind::Payload: return {kind, kNoJoint, u(2.0, 8.0)};
+    case EffectKind::TrunkCom: return {kind, kNoJoint, sign() * u(0.02, 0.05)};
+    case EffectKind::Slope: return {kind, kNoJoint, u(0.01, 0.04)};
+  }
+  return {kind};
+}
+
+std::string synthTruthJson(const std::string& robot_path, const std::string& gait_path,
+                           const std::vector<Effect>& effects, const SynthOptions& o) {
+  JsonWriter w;
+  w.beginObject();
+  w.key("robot").value(robot_path).key("gait").value(gait_path);
+  w.key("steps").value(o.steps).key("rate_hz").value(o.rate);
+  w.key("seed").value(static_cast<double>(o.seed));
+  w.key("noise").beginObject();
+  w.key("enabled").value(o.noise).key("encoder_counts_per_rev").value(o.encoder_counts);
+  w.key("torque_sd").value(o.torque_noise).key("force_sd").value(o.force_noise);
+  w.endObject();
+  w.key("effects").beginArray();
+  for (const Effect& e : effects) {
+    w.beginObject().key("effect").value(effectInfo(e.kind).name).key("joint");
+    if (e.joint == kNoJoint) w.null(); else w.value(jointName(e.joint));
+    w.key("value").value(e.value).key("unit").value(effectInfo(e.kind).unit);
+    w.endObject();
+  }
+  w.endArray().endObject();
+  return w.str() + "\n";
+}
+
+}  // namespace gaitopt

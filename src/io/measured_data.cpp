@@ -1,0 +1,203 @@
+#include "gaitopt/io/measured_data.hpp"
+
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include "gaitopt/io/config_error.hpp"
+#include "gaitopt/io/json_writer.hpp"
+
+namespace gaitopt {
+
+namespace {
+
+const std::array<const char*, 9> kRequired = {"t",      "alpha",  "delta1", "delta2", "delta3",
+                                              "delta4", "phase",  "stance", "step"};
+const std::array<const char*, 4> kTorque = {"gamma1", "gamma2", "gamma3", "gamma4"};
+const std::array<const char*, 4> kReactions = {"R1x", "R1z", "R2x", "R2z"};
+
+std::vector<std::string> splitCsvLine(std::string line) {
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  std::vector<std::string> cells;
+  std::stringstream in(line);
+  std::string cell;
+  while (std::getline(in, cell, ',')) {
+    const auto b = cell.find_first_not_of(" \t");
+    const auto e = cell.find_last_not_of(" \t");
+    cells.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
+  }
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
+// Locates errors: "<file>:<line>: row <r>, column '<c>': <problem>" (row 1 = first data row).
+class CsvContext {
+ public:
+  explicit CsvContext(std::string file) : file_(std::move(file)) {}
+  ConfigError error(int line, const std::string& column, const std::string& problem) const {
+    const std::string where =
+        line > 1 ? "row " + std::to_string(line - 1) + ", column '" + column + "': "
+                 : "column '" + column + "': ";
+    return ConfigError(file_, "", line, where + problem);
+  }
+  ConfigError fileError(const std::string& problem) const {
+    return ConfigError(file_, "", 0, problem);
+  }
+
+ private:
+  std::string file_;
+};
+
+class RowReader {
+ public:
+  RowReader(const CsvContext& ctx, const std::map<std::string, int>& columns,
+            const std::vector<std::string>& cells, int line)
+      : ctx_(ctx), columns_(columns), cells_(cells), line_(line) {}
+  const std::string& text(const std::string& c) const { return cells_[columns_.at(c)]; }
+  double number(const std::string& c) const {
+    const std::string& s = text(c);
+    char* end = nullptr;
+    const double v = std::strtod(s.c_str(), &end);
+    if (s.empty() || end != s.c_str() + s.size())
+      throw ctx_.error(line_, c, "not a number: '" + s + "'");
+    if (!std::isfinite(v)) throw ctx_.error(line_, c, "not a finite number: '" + s + "'");
+    return v;
+  }
+  template <std::size_t N> Vec4 four(const std::array<const char*, N>& names) const {
+    return Vec4(number(names[0]), number(names[1]), number(names[2]), number(names[3]));
+  }
+  ConfigError error(const std::string& c, const std::string& problem) const {
+    return ctx_.error(line_, c, problem);
+  }
+
+ private:
+  const CsvContext& ctx_;
+  const std::map<std::string, int>& columns_;
+  const std::vector<std::string>& cells_;
+  int line_;
+};
+
+template <std::size_t N>
+bool optionalGroup(const CsvContext& ctx, const std::map<std::string, int>& columns,
+                   const std::array<const char*, N>& names) {
+  std::size_t present = 0;
+  for (const char* n : names) present += columns.count(n);
+  if (present != 0 && present != N)
+    for (const char* n : names)
+      if (!columns.count(n)) throw ctx.error(1, n, "missing: give all of its group or none");
+  return present == N;
+}
+
+std::map<std::string, int> readHeader(const CsvContext& ctx, const std::string& header) {
+  std::map<std::string, int> columns;
+  const std::vector<std::string> names = splitCsvLine(header);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    bool known = false;
+    for (const auto* group : {kRequired.data(), kTorque.data(), kReactions.data()}) {
+      const std::size_t n = group == kRequired.data() ? kRequired.size() : 4;
+      for (std::size_t k = 0; k < n; ++k) known = known || names[i] == group[k];
+    }
+    if (!known) throw ctx.error(1, names[i], "unknown column");
+    if (!columns.emplace(names[i], static_cast<int>(i)).second)
+      throw ctx.error(1, names[i], "duplicate column");
+  }
+  for (const char* n : kRequired)
+    if (!columns.count(n)) throw ctx.error(1, n, "missing required column");
+  return columns;
+}
+
+void appendRow(const RowReader& row, MeasuredData& d) {
+  const double t = row.number("t");
+  if (!d.t.empty() && !(t > d.t.back()))
+    throw row.error("t", "time must increase, got " + formatDouble(t) + " after " +
+                             formatDouble(d.t.back()));
+  d.t.push_back(t);
+  d.q.emplace_back(row.number("alpha"), row.number("delta1"), row.number("delta2"),
+                   row.number("delta3"), row.number("delta4"));
+  const std::string& ph = row.text("phase");
+  if (ph != "SS" && ph != "DS") throw row.error("phase", "must be SS or DS, got '" + ph + "'");
+  d.phase.push_back(ph == "SS" ? Phase::SingleSupport : Phase::DoubleSupport);
+  const std::string& st = row.text("stance");
+  if (st != "left" && st != "right")
+    throw row.error("stance", "must be left or right, got '" + st + "'");
+  d.stance.push_back(st == "left" ? Stance::Left : Stance::Right);
+  const double step = row.number("step");
+  if (step != std::floor(step) || std::abs(step) > 1e15)
+    throw row.error("step", "must be an integer, got '" + row.text("step") + "'");
+  if (!d.step.empty() && step < d.step.back())
+    throw row.error("step", "must not decrease, got " + row.text("step") + " after " +
+                                std::to_string(d.step.back()));
+  d.step.push_back(static_cast<long>(step));
+  if (d.has_torque) d.gamma.push_back(row.four(kTorque));
+  if (d.has_reactions) d.reactions.push_back(row.four(kReactions));
+}
+
+void checkSteps(const CsvContext& ctx, const MeasuredData& d, const std::vector<int>& lines) {
+  int steps = 0;
+  for (std::size_t i = 0; i < d.size();) {
+    std::size_t k = i;
+    while (k < d.size() && d.step[k] == d.step[i]) ++k;
+    if (k - i < static_cast<std::size_t>(kMinSamplesPerStep))
+      throw ctx.error(lines[i], "step",
+                      "step " + std::to_string(d.step[i]) + " has " + std::to_string(k - i) +
+                          " samples, fewer than " + std::to_string(kMinSamplesPerStep));
+    ++steps;
+    i = k;
+  }
+  if (steps < kMinSteps)
+    throw ctx.fileError("column 'step': " + std::to_string(steps) + " steps, fewer than " +
+                        std::to_string(kMinSteps));
+}
+
+}  // namespace
+
+MeasuredData readMeasuredCsv(const std::string& path) {
+  const CsvContext ctx(path);
+  std::ifstream in(path);
+  if (!in) throw ctx.fileError("cannot read the measured-data file");
+  std::string line;
+  if (!std::getline(in, line)) throw ctx.fileError("empty file: expected a header row");
+  const std::map<std::string, int> columns = readHeader(ctx, line);
+  MeasuredData d;
+  d.has_torque = optionalGroup(ctx, columns, kTorque);
+  d.has_reactions = optionalGroup(ctx, columns, kReactions);
+  if (!d.has_torque && !d.has_reactions)
+    throw ctx.error(1, "gamma1", "no torque (gamma1..gamma4) and no reaction (R1x..R2z) columns");
+  std::vector<int> lines;
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (line.empty() || line == "\r") continue;
+    const std::vector<std::string> cells = splitCsvLine(line);
+    if (cells.size() != columns.size())
+      throw ctx.error(number, "", "has " + std::to_string(cells.size()) + " cells, header has " +
+                                      std::to_string(columns.size()));
+    appendRow(RowReader(ctx, columns, cells, number), d);
+    lines.push_back(number);
+  }
+  checkSteps(ctx, d, lines);
+  return d;
+}
+
+std::string measuredCsv(const MeasuredData& d) {
+  std::ostringstream out;
+  out << "t,alpha,delta1,delta2,delta3,delta4,phase,stance,step";
+  if (d.has_torque) out << ",gamma1,gamma2,gamma3,gamma4";
+  if (d.has_reactions) out << ",R1x,R1z,R2x,R2z";
+  out << '\n';
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    out << formatDouble(d.t[i]);
+    for (int k = 0; k < 5; ++k) out << ',' << formatDouble(d.q[i](k));
+    out << ',' << (d.phase[i] == Phase::SingleSupport ? "SS" : "DS") << ','
+        << (d.stance[i] == Stance::Left ? "left" : "right") << ',' << d.step[i];
+    if (d.has_torque)
+      for (int k = 0; k < 4; ++k) out << ',' << formatDouble(d.gamma[i](k));
+    if (d.has_reactions)
+      for (int k = 0; k < 4; ++k) out << ',' << formatDouble(d.reactions[i](k));
+    out << '\n';
+  }
+  return out.str();
+}
+
+}  // namespace gaitopt
