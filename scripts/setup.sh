@@ -9,6 +9,7 @@ GAITOPT_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 GAITOPT_PACKAGES=(
   build-essential cmake pkg-config
   libeigen3-dev coinor-libipopt-dev libnlopt-cxx-dev libyaml-cpp-dev libcli11-dev catch2
+  python3 python3-numpy python3-matplotlib
 )
 
 gaitopt_install_packages() {
