@@ -151,13 +151,7 @@ int main(int argc, char** argv) {
     w.key("repeats").value(repeats);
     w.key("friction_sign").value("smooth");
     w.key("unit").value("ns per call");
-    w.key("results").beginArray();
-    for (const Stats& s : results) {
-      w.beginObject();
-      writeStatsFields(w, s);
-      w.endObject();
-    }
-    w.endArray();
+    writeResultsArray(w, results);
     w.endObject();
     if (!writeJsonReport("bench_model", opts.json_path, w)) return 1;
   }

@@ -115,6 +115,17 @@ inline void writeStatsFields(JsonWriter& w, const Stats& s) {
   w.key("mean_ns").value(s.mean_ns);
 }
 
+// The member "results": an array with the fields of every measurement.
+inline void writeResultsArray(JsonWriter& w, const std::vector<Stats>& results) {
+  w.key("results").beginArray();
+  for (const Stats& s : results) {
+    w.beginObject();
+    writeStatsFields(w, s);
+    w.endObject();
+  }
+  w.endArray();
+}
+
 inline std::string cpuModel() {
   std::ifstream in("/proc/cpuinfo");
   std::string line;

@@ -11,16 +11,30 @@ ImpactResult solveAlgebraicImpact(const ImpactSystem<double>& system, const Impa
   result.model = ImpactModelKind::Algebraic;
   result.mu = options.mu;
   result.V2_minus = system.V_minus.tail<2>();
-  for (ImpactBehaviour b : allImpactBehaviours()) {
-    const ImpactOutcome<double> o = algebraicImpact(system, b, options.mu);
-    if (!o.Xd_plus.allFinite()) continue;  // singular equality set: no solution of this kind
-    const std::vector<SlackInfo> info = impactSlacks(b);
+  // Built once: the behaviours and the kinds of their slacks (for the normalisation).
+  static const std::vector<ImpactBehaviour> behaviours = allImpactBehaviours();
+  static const std::vector<std::vector<SlackInfo>> infos = [] {
+    std::vector<std::vector<SlackInfo>> out;
+    for (ImpactBehaviour b : allImpactBehaviours()) out.push_back(impactSlacks(b));
+    return out;
+  }();
+  for (std::size_t k = 0; k < behaviours.size(); ++k) {
+    const ImpactBehaviour b = behaviours[k];
+    // Only the impulses and foot velocities decide consistency; Ẋ⁺ and the energy are
+    // computed for the consistent behaviours alone (completeSolution).
+    Matrix4S<double> M;
+    Vector4S<double> r;
+    impactEqualities(system, b, options.mu, M, r);
+    const Eigen::Vector4d I = M.partialPivLu().solve(r);
+    if (!I.allFinite()) continue;  // singular equality set: no solution of this kind
+    const Eigen::VectorXd slacks =
+        impactSlackValues<double>(I, system.V_minus + system.W * I, b, options.mu);
     bool consistent = true, boundary = false;
-    for (Eigen::Index i = 0; i < o.slacks.size(); ++i) {
-      const double unit = info[static_cast<std::size_t>(i)].kind == SlackKind::Velocity
+    for (Eigen::Index i = 0; i < slacks.size(); ++i) {
+      const double unit = infos[k][static_cast<std::size_t>(i)].kind == SlackKind::Velocity
                               ? scale.speed
                               : scale.impulse;
-      const double x = o.slacks(i) / unit;
+      const double x = slacks(i) / unit;
       consistent = consistent && x >= -options.tolerance;
       boundary = boundary || std::abs(x) <= options.tolerance;
     }
@@ -28,10 +42,8 @@ ImpactResult solveAlgebraicImpact(const ImpactSystem<double>& system, const Impa
     ImpactSolution s;
     s.behaviour = b;
     s.boundary = boundary;
-    Eigen::Vector4d I;
-    I << o.impulse1, o.impulse2;
     detail::completeSolution(system, I, options, s);
-    s.phases.push_back({b, o.impulse2(1)});
+    s.phases.push_back({b, I(3)});
     detail::addDistinctSolution(result.solutions, std::move(s), options.tolerance * scale.impulse,
                                    options.outcome_tolerance);
   }

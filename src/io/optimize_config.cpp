@@ -145,7 +145,9 @@ OptimizeConfig loadOptimizeConfig(const std::string& path) {
     c.initial_guess_parameters = guess.parameters;
     c.initial_guess_parameterisation = guess.options.parameterisation;
     if (guess.options.parameterisation.ss_points > c.options.parameterisation.ss_points ||
-        guess.options.parameterisation.ds_points > c.options.parameterisation.ds_points)
+        guess.options.parameterisation.ds_points > c.options.parameterisation.ds_points ||
+        (guess.options.parameterisation.landsWithImpact() &&
+         !c.options.parameterisation.landsWithImpact()))
       throw doc.error("initial_guess", "the gait file's parameterisation (" +
                                            guess.options.parameterisation.label() +
                                            ") is richer than the configured one (" +

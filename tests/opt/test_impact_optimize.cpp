@@ -10,6 +10,7 @@
 #include "gaitopt/io/optimize_config.hpp"
 #include "gaitopt/opt/gait_problem.hpp"
 #include "gaitopt/opt/optimizer.hpp"
+#include "test_files.hpp"
 #include "test_support.hpp"
 
 using namespace gaitopt;
@@ -74,4 +75,14 @@ TEST_CASE("optimize: the variables an impact then single support does not read a
   }
   CHECK(fixed == 7);
   CHECK(v.names[par.impactSlopeIndex()] == "delta3s_fSS");
+}
+
+TEST_CASE("optimize: an impact gait cannot start a zero-velocity landing optimisation",
+          "[optimize][impact_gait]") {
+  test::ScratchDir scratch("impact_optimize", "config");
+  const std::string path = scratch.write(
+      "robot: " + sourcePath("configs/robot/rabbit_chevallereau_aoustin.yaml") +
+      "\ninitial_guess: " + sourcePath("configs/gait/chevallereau_aoustin_0.75_impact.yaml") +
+      "\nparameterisation: {ss_points: 3, ds_points: 0}\n");
+  test::requireConfigError(loadOptimizeConfig, path, "initial_guess", 2, "impact_ss");
 }
