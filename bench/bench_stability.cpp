@@ -21,11 +21,7 @@ int main(int argc, char** argv) {
   WalkRequest req;
   req.tolerances = {1e-12, 1e-14};
   const StepMap P = walkingStepMap(e, model, model, req);
-  const GaitMotion<double>& mo = e.motion;
-  Eigen::VectorXd x(10);
-  x.head<5>() = mo.q_iSS;
-  x(5) = mo.alphadot_iSS;
-  for (int j = 0; j < 4; ++j) x(6 + j) = mo.ss_path[j](mo.q_iSS(0)).first * mo.alphadot_iSS;
+  const Eigen::VectorXd x = walkingCycleState(e.motion);
   const Eigen::VectorXd h = Eigen::VectorXd::Constant(10, 1e-4);
   const Environment env;
   printEnvironment("bench_stability", env);

@@ -26,15 +26,6 @@ struct StabilityArgs {
   int points = 61;
 };
 
-// x = (q, q̇) at SS start on the cycle: q_iSS, q*(α_iSS) α̇_iSS.
-Eigen::VectorXd cycleState(const GaitMotion<double>& mo) {
-  Eigen::VectorXd x(10);
-  x.head<5>() = mo.q_iSS;
-  x(5) = mo.alphadot_iSS;
-  for (int j = 0; j < 4; ++j) x(6 + j) = mo.ss_path[j](mo.q_iSS(0)).first * mo.alphadot_iSS;
-  return x;
-}
-
 struct MapPoint {
   double alphad, next;
   std::string outcome;
@@ -117,7 +108,7 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
     req.friction_coefficient = gait.options.friction_coefficient;
     req.tolerances = {1e-12, 1e-14};  // the map's noise must stay far below the FD step
     const StepMap P = walkingStepMap(e, model, model, req);
-    const Eigen::VectorXd x = cycleState(e.motion);
+    const Eigen::VectorXd x = walkingCycleState(e.motion);
     const PoincareLinearisation L = linearisePoincare(P, x, Eigen::VectorXd::Constant(10, a->step));
     Eigen::VectorXd power_vector;
     const double power =

@@ -86,7 +86,6 @@ void CvodeIntegrator::reset(double t0, const Eigen::VectorXd& y0) {
 
 CvodeIntegrator::Result CvodeIntegrator::advance(double t_end) {
   Impl& s = *impl_;
-  check(CVodeSetStopTime(s.mem, t_end), "CVodeSetStopTime");
   realtype t = 0.0;
   const int flag = CVode(s.mem, t_end, s.y, &t, CV_NORMAL);
   check(flag, "CVode");

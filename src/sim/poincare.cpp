@@ -52,6 +52,14 @@ double powerIteration(const StepMap& P, const Eigen::VectorXd& x, const Eigen::V
   return c;
 }
 
+Eigen::VectorXd walkingCycleState(const GaitMotion<double>& mo) {
+  Eigen::VectorXd x(10);
+  x.head<5>() = mo.q_iSS;
+  x(5) = mo.alphadot_iSS;
+  for (int j = 0; j < 4; ++j) x(6 + j) = mo.ss_path[j](mo.q_iSS(0)).first * mo.alphadot_iSS;
+  return x;
+}
+
 StepMap walkingStepMap(const GaitEvaluation<double>& e, const Model& controller,
                        const Model& plant, const WalkRequest& base) {
   return [&e, &controller, &plant, base](const Eigen::VectorXd& x) {

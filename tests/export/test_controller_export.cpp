@@ -9,18 +9,12 @@
 #include "gaitopt/io/file_digest.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/model/joint_friction.hpp"
+#include "test_default_gait.hpp"
 #include "test_files.hpp"
 #include "test_support.hpp"
 
 namespace gaitopt::test {
 namespace {
-
-struct ExportFixture {
-  GaitFile gait = loadGaitFile(sourcePath("configs/gait/default_step.yaml"));
-  GaitEvaluator evaluator{gait.robot, gait.options, gait.model_options};
-  GaitEvaluation<double> evaluation = evaluator.evaluate(gait.parameters);
-  Model model = buildModel(gait.robot, gait.model_options);
-};
 
 void requireRowsEqual(const ExportRow& a, const ExportRow& b, double tol) {
   CHECK(a.step == b.step);
@@ -64,7 +58,7 @@ TEST_CASE("SHA-256 matches the FIPS 180-2 test vector", "[export]") {
 }
 
 TEST_CASE("Export CSV reads back to 1e-9", "[export]") {
-  const ExportFixture f;
+  const DefaultGait f;
   REQUIRE(f.evaluation.motion_computed);
   ExportRequest req;
   req.steps = 3;
@@ -93,7 +87,7 @@ TEST_CASE("Export CSV reads back to 1e-9", "[export]") {
 }
 
 TEST_CASE("Export CSV reader names the row and column of a bad cell", "[export]") {
-  const ExportFixture f;
+  const DefaultGait f;
   ExportRequest req;
   req.rate = 50;
   std::string csv =
@@ -112,7 +106,7 @@ TEST_CASE("Export CSV reader names the row and column of a bad cell", "[export]"
 }
 
 TEST_CASE("Export JSON polynomials reproduce the sampled motor angles to 1e-9", "[export]") {
-  const ExportFixture f;
+  const DefaultGait f;
   ExportRequest req;
   req.rate = 300;
   const std::vector<ExportRow> rows = exportTrajectory(f.evaluator, f.evaluation, f.model, req);
@@ -156,7 +150,7 @@ TEST_CASE("Export JSON polynomials reproduce the sampled motor angles to 1e-9", 
 
 TEST_CASE("Physical motor angles, hip and feet are continuous at touchdown and lift-off",
           "[export]") {
-  const ExportFixture f;
+  const DefaultGait f;
   const GaitMotion<double>& mo = f.evaluation.motion;
   const auto at = [&](Phase ph, double t, int step, Leg leg1, double foot1_x) {
     return exportRow(f.model, sampleTrajectoryAt(f.evaluator, f.evaluation, ph, t), step, leg1,
@@ -184,7 +178,7 @@ TEST_CASE("Physical motor angles, hip and feet are continuous at touchdown and l
 
 TEST_CASE("Exported torques add up to the evaluator's Γ* plus the robot file's dry friction",
           "[export]") {
-  const ExportFixture f;
+  const DefaultGait f;
   REQUIRE_FALSE(f.gait.options.dry_friction);  // the evaluator's Γ* has viscous friction only
   ExportRequest req;
   req.rate = 200;

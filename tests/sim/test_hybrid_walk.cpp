@@ -7,23 +7,13 @@
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/model/dynamics_pinned.hpp"
 #include "gaitopt/sim/hybrid_walk.hpp"
+#include "test_default_gait.hpp"
 #include "test_files.hpp"
 #include "test_support.hpp"
 
 namespace gaitopt::test {
-namespace {
-
-struct WalkFixture {
-  GaitFile gait = loadGaitFile(sourcePath("configs/gait/default_step.yaml"));
-  GaitEvaluator evaluator{gait.robot, gait.options, gait.model_options};
-  GaitEvaluation<double> evaluation = evaluator.evaluate(gait.parameters);
-  Model model = buildModel(gait.robot, gait.model_options);
-};
-
-}  // namespace
-
 TEST_CASE("Nominal closed loop reproduces the cycle; events and energy balance", "[sim]") {
-  const WalkFixture f;
+  const DefaultGait f;
   WalkRequest req;
   req.steps = 3;
   const WalkResult r = simulateWalk(f.evaluation, f.model, f.model, req);
@@ -47,7 +37,7 @@ TEST_CASE("Nominal closed loop reproduces the cycle; events and energy balance",
 }
 
 TEST_CASE("Perturbed closed loop converges to the reference cycle", "[sim]") {
-  const WalkFixture f;
+  const DefaultGait f;
   const GaitMotion<double>& mo = f.evaluation.motion;
   WalkRequest req;
   req.steps = 3;
@@ -78,7 +68,7 @@ TEST_CASE("Perturbed closed loop converges to the reference cycle", "[sim]") {
 }
 
 TEST_CASE("Touchdown with foot velocity is reported: impact model not available", "[sim]") {
-  const WalkFixture f;
+  const DefaultGait f;
   const GaitMotion<double>& mo = f.evaluation.motion;
   const TouchdownMap td = impulseFreeTouchdown(1e-6);
   Vec5 qp, qdp;

@@ -5,6 +5,7 @@
 
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/sim/poincare.hpp"
+#include "test_default_gait.hpp"
 #include "test_files.hpp"
 #include "test_support.hpp"
 
@@ -43,18 +44,11 @@ TEST_CASE("Poincaré map of a passive damped oscillator has eigenvalues exp(lamb
 
 TEST_CASE("Closed-loop walking cycle of the default gait is a stable fixed point",
           "[sim][poincare]") {
-  const GaitFile gait = loadGaitFile(sourcePath("configs/gait/default_step.yaml"));
-  const GaitEvaluator ev(gait.robot, gait.options, gait.model_options);
-  const GaitEvaluation<double> e = ev.evaluate(gait.parameters);
-  const Model model = buildModel(gait.robot, gait.model_options);
+  const DefaultGait f;
   WalkRequest req;
   req.tolerances = {1e-12, 1e-14};
-  const StepMap P = walkingStepMap(e, model, model, req);
-  const GaitMotion<double>& mo = e.motion;
-  Eigen::VectorXd x(10);
-  x.head<5>() = mo.q_iSS;
-  x(5) = mo.alphadot_iSS;
-  for (int j = 0; j < 4; ++j) x(6 + j) = mo.ss_path[j](mo.q_iSS(0)).first * mo.alphadot_iSS;
+  const StepMap P = walkingStepMap(f.evaluation, f.model, f.model, req);
+  const Eigen::VectorXd x = walkingCycleState(f.evaluation.motion);
   const PoincareLinearisation L = linearisePoincare(P, x, Eigen::VectorXd::Constant(10, 1e-4));
   CHECK(L.fixed_point_residual < 1e-9);
   // Outputs decay as e^{−ω T_SS} ≈ 1e-10 and the DS control of α is deadbeat: every

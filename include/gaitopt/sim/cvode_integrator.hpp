@@ -36,7 +36,8 @@ class CvodeIntegrator {
     Eigen::VectorXd y;
     int root = -1;  // index of the event function that vanished, −1 if t_end was reached
   };
-  // Integrates until an event or t_end; throws std::runtime_error if CVODE fails.
+  // Integrates until an event or t_end (the state there interpolated on CVODE's dense output,
+  // so output times do not shorten the steps); throws std::runtime_error if CVODE fails.
   Result advance(double t_end);
 
  private:

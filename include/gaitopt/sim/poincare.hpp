@@ -31,6 +31,9 @@ PoincareLinearisation linearisePoincare(const StepMap& P, const Eigen::VectorXd&
 double powerIteration(const StepMap& P, const Eigen::VectorXd& x, const Eigen::VectorXd& dx_max,
                       int iterations, Eigen::VectorXd& vector);
 
+// x = (q, q̇) at SS start on the gait's cycle: q_iSS and q*(α_iSS) α̇_iSS.
+Eigen::VectorXd walkingCycleState(const GaitMotion<double>& motion);
+
 // The closed-loop walking map on x = (q, q̇) ∈ R¹⁰ at SS start; throws std::runtime_error
 // (with the outcome) when the step is not completed.
 StepMap walkingStepMap(const GaitEvaluation<double>& evaluation, const Model& controller,
