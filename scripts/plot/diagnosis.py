@@ -26,6 +26,9 @@ def number(text):
 
 
 def main(argv):
+    if "--out" in argv and argv.index("--out") + 1 < len(argv):  # `gaitopt plot diagnosis DIR --out PNG`
+        k = argv.index("--out")
+        argv = argv[:k] + argv[k + 2:] + [argv[k + 1]]
     if len(argv) not in (2, 3):
         sys.exit(__doc__)
     out_dir = argv[1]

@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """Region plot of a gaitopt impact map (thesis Figs. 2.3-2.16 kind).
 
-Usage: scripts/plot/impact_map.py MAP_CSV [OUT_PNG] [--title TEXT]
-MAP_CSV is the map.csv written by `gaitopt impact-map` (theta_deg, mu, behaviour,
-n_solutions, status). OUT_PNG defaults to map.png next to MAP_CSV. Each (theta, mu) sample is
+Usage: scripts/plot/impact_map.py MAP_CSV|DIR [OUT_PNG | --out OUT_PNG] [--title TEXT]
+(`gaitopt plot impact_map DIR --out OUT_PNG` calls it so.) MAP_CSV is the map.csv written by
+`gaitopt impact-map` (theta_deg, mu, behaviour, n_solutions, status), or DIR/map.csv for its
+output directory DIR. OUT_PNG defaults to map.png next to MAP_CSV. Each (theta, mu) sample is
 a cell coloured by its behaviour (foot1/foot2 after the impact); indeterminate samples (several
 solutions) are hatched and labelled with all their behaviours, inconsistent ones (no solution)
 stay white. Exit 2 on a missing or malformed file.
@@ -96,11 +97,17 @@ def main(argv):
             fail("--title needs a value")
         title = argv[k + 1]
         argv = argv[:k] + argv[k + 2:]
+    if "--out" in argv:
+        k = argv.index("--out")
+        if k + 1 >= len(argv):
+            fail("--out needs a value")
+        argv = argv[:k] + argv[k + 2:] + [argv[k + 1]]
     if len(argv) not in (2, 3):
         print(__doc__, file=sys.stderr)
         sys.exit(2)
-    out = argv[2] if len(argv) == 3 else os.path.join(os.path.dirname(argv[1]) or ".", "map.png")
-    plot(read_map(argv[1]), out, title)
+    source = os.path.join(argv[1], "map.csv") if os.path.isdir(argv[1]) else argv[1]
+    out = argv[2] if len(argv) == 3 else os.path.join(os.path.dirname(source) or ".", "map.png")
+    plot(read_map(source), out, title)
 
 
 if __name__ == "__main__":

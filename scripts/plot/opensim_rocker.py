@@ -24,10 +24,14 @@ def centred(values, weights):
 
 
 def main():
-    if len(sys.argv) not in (2, 3):
+    argv = sys.argv
+    if "--out" in argv and argv.index("--out") + 1 < len(argv):  # `gaitopt plot opensim_rocker REPORT --out PNG`
+        k = argv.index("--out")
+        argv = argv[:k] + argv[k + 2:] + [argv[k + 1]]
+    if len(argv) not in (2, 3):
         sys.exit(__doc__)
-    report_path = sys.argv[1]
-    out = sys.argv[2] if len(sys.argv) == 3 else report_path.rsplit(".", 1)[0] + ".png"
+    report_path = argv[1]
+    out = argv[2] if len(argv) == 3 else report_path.rsplit(".", 1)[0] + ".png"
     with open(report_path) as f:
         report = json.load(f)
     rocker = report["rocker_foot"]
