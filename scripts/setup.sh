@@ -9,6 +9,7 @@ GAITOPT_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 GAITOPT_PACKAGES=(
   build-essential cmake pkg-config
   libeigen3-dev coinor-libipopt-dev libnlopt-cxx-dev libyaml-cpp-dev libcli11-dev catch2
+  clang libclang-rt-14-dev  # libFuzzer harnesses (scripts/fuzz.sh, CI smoke run)
 )
 
 gaitopt_install_packages() {

@@ -24,7 +24,8 @@ CLI::Validator numberWithin(double lo, double hi, bool lo_open, const std::strin
       [=](std::string& s) -> std::string {
         char* end = nullptr;
         const double v = std::strtod(s.c_str(), &end);
-        const bool plain = !s.empty() && s.find_first_not_of("0123456789+-.eE") == std::string::npos;
+        const bool plain =
+            !s.empty() && s.find_first_not_of("0123456789+-.eE") == std::string::npos;
         if (!plain || end != s.c_str() + s.size() || !std::isfinite(v))
           return "'" + printable(s) + "' is not a finite number";
         if ((lo_open ? v <= lo : v < lo) || v > hi)

@@ -72,7 +72,9 @@ void writeOptimizationOutputs(const std::string& dir, const OptimizationOutputs&
   fs::create_directories(d);
   writeFileAtomically((d / "summary.json").string(), outputs.summary_json);
   writeFileAtomically((d / "gait.yaml").string(), outputs.gait_yaml);
-  if (outputs.trajectory_csv) writeFileAtomically((d / "trajectory.csv").string(), *outputs.trajectory_csv);
+  if (outputs.trajectory_csv) {
+    writeFileAtomically((d / "trajectory.csv").string(), *outputs.trajectory_csv);
+  }
 }
 
 }  // namespace gaitopt

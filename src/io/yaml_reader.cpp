@@ -69,12 +69,16 @@ int nesting(const YAML::Node& node, int limit) {
   return deepest + 1;
 }
 
+ConfigError tooLarge(const std::string& file) {
+  return ConfigError(file, "", 0, "file larger than " +
+                                      std::to_string(YamlLimits::kMaxFileBytes) + " bytes (limit)");
+}
+
 // Text checks done before parsing: size, line length and control characters (binary data
 // would otherwise be echoed to the terminal by the parser's messages).
 void checkText(const std::string& text, const std::string& file) {
   if (text.size() > YamlLimits::kMaxFileBytes) {
-    throw ConfigError(file, "", 0, "file larger than " +
-                                       std::to_string(YamlLimits::kMaxFileBytes) + " bytes (limit)");
+    throw tooLarge(file);
   }
   int line = 1;
   std::size_t line_start = 0;
@@ -122,8 +126,7 @@ YAML::Node loadYamlFile(const std::string& path) {
   }
   const auto size = std::filesystem::file_size(path, ec);
   if (!ec && size > YamlLimits::kMaxFileBytes) {
-    throw ConfigError(path, "", 0, "file larger than " +
-                                       std::to_string(YamlLimits::kMaxFileBytes) + " bytes (limit)");
+    throw tooLarge(path);
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(path, "", 0, "cannot open the file for reading");

@@ -20,16 +20,12 @@
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
-using gaitopt::test::CliRun;
-using gaitopt::test::quoted;
-using gaitopt::test::readFile;
-using gaitopt::test::runCli;
-using gaitopt::test::sourcePath;
+using namespace gaitopt::test;  // CliRun, runCli, quoted, readFile, sourcePath, ScratchDir
 
 namespace {
 
-gaitopt::test::ScratchDir& scratch() {
-  static gaitopt::test::ScratchDir dir("bad_input", "input");
+ScratchDir& scratch() {
+  static ScratchDir dir("bad_input", "input");
   return dir;
 }
 
@@ -109,11 +105,11 @@ TEST_CASE("bad input: a configuration cannot write outside --out", "[reliability
                   absolute + ":2: key 'solver.ipopt.output_file': must be a plain file name");
   CHECK(readFile(precious) == "precious\n");
   CHECK_FALSE(fs::exists(out));
-  gaitopt::test::requireConfigError(
+  requireConfigError(
       gaitopt::loadOptimizeConfig,
       config("solver: {backend: ipopt, ipopt: {output_file: ../ipopt.out}}\n"),
       "solver.ipopt.output_file", 2, "plain file name");
-  gaitopt::test::requireConfigError(
+  requireConfigError(
       gaitopt::loadOptimizeConfig,
       config("solver: {backend: ipopt, ipopt: {option_file_name: /etc/passwd}}\n"),
       "solver.ipopt.option_file_name", 2, "not allowed");
@@ -186,7 +182,8 @@ TEST_CASE("bad input: command-line vectors and values", "[reliability]") {
   }
   requireBadInput("model --q 0,0,0,0,0 --qd 0,nan,0,0,0", "--qd: 'nan' is not a finite number");
   requireBadInput("model --q 0,0,0,0,0 --qdd 0,0,0,0,-inf", "--qdd: ");
-  requireBadInput("model --q 0,0,0,0,0 --qd 0,0,0,0,2e3", "must be in [-1000, 1000] rad/s, got 2e3");
+  requireBadInput("model --q 0,0,0,0,0 --qd 0,0,0,0,2e3",
+                  "must be in [-1000, 1000] rad/s, got 2e3");
   requireBadInput("frobnicate", "unknown subcommand 'frobnicate' (expected one of: model,");
   const std::string out = scratch().fresh("out_cli");
   const std::string sweep = "sweep --config " + quoted(kConfig) + " --out " + quoted(out);
@@ -199,7 +196,6 @@ TEST_CASE("bad input: command-line vectors and values", "[reliability]") {
 
 TEST_CASE("bad input: YAML documents, control characters, numbers as written",
           "[reliability]") {
-  using gaitopt::test::requireConfigError;
   const auto load = gaitopt::loadOptimizeConfig;
   const auto fileError = [&](const std::string& path, int line, const std::string& problem) {
     try {

@@ -15,7 +15,8 @@ std::string printable(const std::string& text, std::size_t max_bytes = 200);
 
 class ConfigError : public std::runtime_error {
  public:
-  // Message: "<file>:<line>: key '<key>': <problem>", file and key made printable. The ":<line>" part is left out when
+  // Message: "<file>:<line>: key '<key>': <problem>", file and key made printable. The
+  // ":<line>" part is left out when
   // line is 0 (unknown), and the "key '<key>': " part when key is empty (file-level errors
   // such as an unreadable or unparsable file).
   ConfigError(std::string file, std::string key, int line, const std::string& problem);
