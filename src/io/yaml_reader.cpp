@@ -1,6 +1,7 @@
 #include "gaitopt/io/yaml_reader.hpp"
 
 #include <yaml-cpp/depthguard.h>
+#include <yaml-cpp/eventhandler.h>
 
 #include <algorithm>
 #include <cmath>
@@ -67,6 +68,40 @@ int nesting(const YAML::Node& node, int limit) {
     if (deepest >= limit) break;  // enough to refuse; alias loops stay bounded too
   }
   return deepest + 1;
+}
+
+// Records where documents start; ignores everything else.
+class DocumentStarts : public YAML::EventHandler {
+ public:
+  std::vector<YAML::Mark> starts;
+  void OnDocumentStart(const YAML::Mark& mark) override { starts.push_back(mark); }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
+// The line of a second document in `text` (already parsed once), 0 if there is none. Parsed
+// one document at a time, at most two: yaml-cpp 0.7's LoadAll loops forever on some invalid
+// input (e.g. a line starting with ','; jbeder/yaml-cpp#1040, fixed upstream in #1319), where
+// the parser reports ever more empty documents. A real second document needs a '---' or '...'
+// marker line, which those bogus ones lack.
+int secondDocumentLine(const std::string& text) {
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  DocumentStarts handler;
+  if (!parser.HandleNextDocument(handler) || !parser.HandleNextDocument(handler)) return 0;
+  const bool marker = text.rfind("---", 0) == 0 || text.rfind("...", 0) == 0 ||
+                      text.find("\n---") != std::string::npos ||
+                      text.find("\n...") != std::string::npos;
+  return marker && handler.starts.size() > 1 ? std::max(1, lineOf(handler.starts[1])) : 0;
 }
 
 ConfigError tooLarge(const std::string& file) {
@@ -137,9 +172,11 @@ YAML::Node loadYamlFile(const std::string& path) {
 
 YAML::Node parseYamlText(const std::string& text, const std::string& file) {
   checkText(text, file);
-  std::vector<YAML::Node> documents;
+  YAML::Node document;
+  int second_document = 0;
   try {
-    documents = YAML::LoadAll(text);
+    document = YAML::Load(text);
+    second_document = secondDocumentLine(text);  // may find a syntax error after the first
   } catch (const YAML::DeepRecursion& e) {
     throw ConfigError(file, "", lineOf(e.mark), "nested deeper than " +
                                                     std::to_string(YamlLimits::kMaxNesting) +
@@ -147,16 +184,15 @@ YAML::Node parseYamlText(const std::string& text, const std::string& file) {
   } catch (const YAML::Exception& e) {
     throw ConfigError(file, "", lineOf(e.mark), "invalid YAML: " + e.msg);
   }
-  if (documents.size() > 1) {
-    throw ConfigError(file, "", lineOf(documents[1]),
+  if (second_document > 0) {
+    throw ConfigError(file, "", second_document,
                       "a second YAML document ('---'): one document per file");
   }
-  if (documents.empty()) return YAML::Node();
-  if (nesting(documents[0], YamlLimits::kMaxNesting + 1) > YamlLimits::kMaxNesting) {
+  if (nesting(document, YamlLimits::kMaxNesting + 1) > YamlLimits::kMaxNesting) {
     throw ConfigError(file, "", 0, "nested deeper than " +
                                        std::to_string(YamlLimits::kMaxNesting) + " levels (limit)");
   }
-  return documents[0];
+  return document;
 }
 
 YamlMap::YamlMap(const YAML::Node& node, std::string file, std::string path_prefix)

@@ -207,7 +207,7 @@ TEST_CASE("bad input: YAML documents, control characters, numbers as written",
       CHECK(std::string(e.what()).find('\x1b') == std::string::npos);
     }
   };
-  fileError(config("speed: 0.5\n---\nspeed: 0.7\n"), 4, "a second YAML document");
+  fileError(config("speed: 0.5\n---\nspeed: 0.7\n"), 3, "a second YAML document");
   fileError(config("speed: 0.5 \x1b[2J\n"), 2, "control character \\x1b: not a text file");
   requireConfigError(load, config("speed: 0.20000000000000001e2\n"), "speed", 2,
                      "got 0.20000000000000001e2");
