@@ -1,8 +1,41 @@
 #!/usr/bin/env bash
-# Install what is missing, build, and run every test; exits non-zero if any test fails.
+# What CI runs (.ci/run): install what is missing, build, and run every test; then the same
+# suite under AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/ (slow optimisation
+# tests in their light form, GAITOPT_TEST_LIGHT=1), then a libFuzzer smoke run of every reader
+# (scripts/fuzz.sh --smoke, FUZZ_SECONDS per harness, default 20). Prints the time of each part;
+# exits non-zero if any part fails. SKIP_SANITIZERS=1 / SKIP_FUZZ=1 leave those parts out.
 set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-bash scripts/setup.sh
+jobs="$(nproc)"
+timings=()
+part() {  # part NAME COMMAND...: runs and times one part
+  local name="$1" start end
+  shift
+  start="$(date +%s)"
+  "$@"
+  end="$(date +%s)"
+  timings+=("$name: $((end - start)) s")
+  echo "test.sh: $name took $((end - start)) s"
+}
+launcher=()
+command -v ccache >/dev/null 2>&1 && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 
-ctest --test-dir build --output-on-failure -j2
+part "install + Release build" bash scripts/setup.sh
+part "Release tests" ctest --test-dir build --output-on-failure -j"$jobs"
+
+if [ "${SKIP_SANITIZERS:-0}" != 1 ]; then
+  part "sanitizer build" bash -c "cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DGAITOPT_SANITIZE=ON ${launcher[*]} >/dev/null && \
+    cmake --build build-asan -j$jobs --target gaitopt gaitopt_tests"
+  export GAITOPT_TEST_LIGHT=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+  part "sanitizer tests" ctest --test-dir build-asan --output-on-failure -j"$jobs"
+  unset GAITOPT_TEST_LIGHT ASAN_OPTIONS UBSAN_OPTIONS
+fi
+
+if [ "${SKIP_FUZZ:-0}" != 1 ]; then
+  part "fuzz build + smoke" bash scripts/fuzz.sh --smoke "${FUZZ_SECONDS:-20}"
+fi
+
+printf 'test.sh: %s\n' "${timings[@]}"

@@ -1,5 +1,6 @@
 #pragma once
 // Shared fixtures for the tests: the shipped robots and seeded random states.
+#include <cstdlib>
 #include <random>
 #include <string>
 
@@ -7,6 +8,13 @@
 #include "gaitopt/io/robot_file.hpp"
 
 namespace gaitopt::test {
+
+// True when GAITOPT_TEST_LIGHT is set (not "0"): the sanitizer run of scripts/test.sh, about
+// ten times slower, runs the slow optimisation tests in a lighter form (fewer starts).
+inline bool lightTests() {
+  const char* v = std::getenv("GAITOPT_TEST_LIGHT");
+  return v != nullptr && *v != '\0' && std::string(v) != "0";
+}
 
 inline std::string sourcePath(const std::string& relative) {
   return std::string(GAITOPT_SOURCE_DIR) + "/" + relative;

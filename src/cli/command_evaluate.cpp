@@ -38,24 +38,12 @@ void registerEvaluateCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", args->out, "Output directory (created if missing)")->required();
   cmd->add_option("--sample-rate", args->sample_rate,
                   "trajectory.csv sample rate [Hz], overrides options.sample_rate (0 < HZ <= 1e5)")
-      ->check(CLI::Validator(
-          [](std::string& s) -> std::string {
-            double v = 0.0;
-            try {
-              std::size_t used = 0;
-              v = std::stod(s, &used);
-              if (used != s.size()) return "not a number: " + s;
-            } catch (const std::exception&) {
-              return "not a number: " + s;
-            }
-            return v > 0.0 && v <= 1e5 ? "" : "must be > 0 and <= 1e5 Hz, got " + s;
-          },
-          "HZ"));
+      ->check(numberWithin(0.0, 1e5, true, "Hz"));
   cmd->callback([args, &exit_code]() {
     // Everything that can fail on bad input happens before the output directory is touched.
     GaitFile gait = loadGaitFile(args->gait);
     if (args->sample_rate) gait.options.sample_rate = *args->sample_rate;
-    requireDirectoryOrAbsent(args->out);
+    StagedDirectory staged(args->out, ourOutputs());  // checks --out before any work
 
     const GaitEvaluator evaluator(gait.robot, gait.options, gait.model_options);
     const GaitEvaluation<double> e = evaluator.evaluate(gait.parameters);
@@ -66,16 +54,10 @@ void registerEvaluateCommand(CLI::App& app, int& exit_code) {
       csv = trajectoryCsv(sampleTrajectory(evaluator, e, gait.options.sample_rate));
     }
 
-    const fs::path dir(args->out);
-    fs::create_directories(dir);
+    const fs::path dir(staged.path());
     writeFileAtomically((dir / "summary.json").string(), summary);
-    const fs::path csv_path = dir / "trajectory.csv";
-    if (csv) {
-      writeFileAtomically(csv_path.string(), *csv);
-    } else {
-      std::error_code ec;
-      fs::remove(csv_path, ec);  // a trajectory from an earlier run would not match this step
-    }
+    if (csv) writeFileAtomically((dir / "trajectory.csv").string(), *csv);
+    staged.commit();
 
     const bool criteria = defined && e.motion_computed;
     std::cout << "evaluate: " << (defined ? "ok" : "undefined") << ", failed level "

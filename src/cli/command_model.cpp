@@ -1,12 +1,19 @@
 // `gaitopt model`: model terms at one state, as JSON on standard output.
 #include <iostream>
 
+#include "cli_common.hpp"
 #include "commands.hpp"
 #include "gaitopt/io/model_report.hpp"
 #include "gaitopt/io/robot_file.hpp"
 
 namespace gaitopt::cli {
 namespace {
+
+// Documented ranges of the state (README, "gaitopt model"): angles of a few turns, rates and
+// accelerations far beyond any gait; beyond them the model terms overflow or mean nothing.
+constexpr double kMaxAngle = 100.0;          // rad
+constexpr double kMaxRate = 1e3;             // rad/s
+constexpr double kMaxAcceleration = 1e5;     // rad/s^2
 
 struct ModelArgs {
   std::string robot = "configs/robot/rabbit_miossec.yaml";
@@ -30,14 +37,17 @@ void registerModelCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--q", args->q, "Configuration alpha,delta1,delta2,delta3,delta4 [rad]")
       ->required()
       ->delimiter(',')
-      ->expected(5);
+      ->expected(5)
+      ->check(numberWithin(-kMaxAngle, kMaxAngle, false, "rad"));
   cmd->add_option("--qd", args->qd, "Velocities [rad/s], 5 comma-separated values (default 0)")
       ->delimiter(',')
-      ->expected(5);
+      ->expected(5)
+      ->check(numberWithin(-kMaxRate, kMaxRate, false, "rad/s"));
   cmd->add_option("--qdd", args->qdd,
                   "Accelerations [rad/s^2], 5 values; adds single-support inverse dynamics")
       ->delimiter(',')
-      ->expected(5);
+      ->expected(5)
+      ->check(numberWithin(-kMaxAcceleration, kMaxAcceleration, false, "rad/s^2"));
   cmd->add_option("--rotor", args->rotor,
                   "Rotor kinetic energy: 'exact' (1.17) or 'high_gear' (Appendix A, A.1)")
       ->capture_default_str()

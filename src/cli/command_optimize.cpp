@@ -13,6 +13,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/io/atomic_file.hpp"
 #include "gaitopt/opt/optimizer.hpp"
 #include "gaitopt/gait/summary.hpp"
 #include "gaitopt/io/optimize_config.hpp"
@@ -161,8 +162,9 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
   cmd->add_flag("--quiet", args->quiet, "No solver progress lines");
   cmd->callback([args, &exit_code]() {
     // Everything that can fail on bad input happens before the output directory is touched.
-    const OptimizeConfig config = loadOptimizeConfig(args->config);
-    requireDirectoryOrAbsent(args->out);
+    OptimizeConfig config = loadOptimizeConfig(args->config);
+    StagedDirectory staged(args->out, ourOutputs(&config.solver));  // --out checked before work
+    placeIpoptOutputFile(config.solver, staged.path());
 
     const GaitEvaluator evaluator(config.robot, config.options, config.model_options);
     const GaitParameters initial = configuredInitialGuess(config, evaluator.model());
@@ -199,7 +201,8 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
             writeRandomStarts(w, runs, args->seed, runs[best].start, criterion);
           }
         });
-    writeOptimizationOutputs(args->out, outputs);
+    writeOptimizationOutputs(staged.path(), outputs);
+    staged.commit();
 
     if (args->random_starts > 0) printStartsTable(std::cout, runs, criterion);
     std::cout << "optimize: " << r.status << ", " << criterionName(criterion) << " "

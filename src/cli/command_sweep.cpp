@@ -17,6 +17,7 @@
 #include "gaitopt/io/atomic_file.hpp"
 #include "gaitopt/gait/evaluator.hpp"
 #include "gaitopt/gait/summary.hpp"
+#include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/optimize_config.hpp"
 #include "gaitopt/io/optimize_output.hpp"
 #include "gaitopt/opt/sweep.hpp"
@@ -52,9 +53,18 @@ void writeSweepMembers(JsonWriter& w, const SweepPoint& p) {
   w.endObject();
 }
 
+// A shard's sweep.csv: a regular file within the size limit (a directory would read as empty).
 std::string readText(const fs::path& path) {
+  const std::string name = printable(path.string());
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec))
+    throw CLI::ValidationError("SHARD_DIR", "'" + name + "' is missing or not a regular file");
+  if (fs::file_size(path, ec) > kMaxSweepCsvBytes)
+    throw CLI::ValidationError("SHARD_DIR", "'" + name + "' is larger than " +
+                                                std::to_string(kMaxSweepCsvBytes) +
+                                                " bytes (limit)");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw CLI::ValidationError("SHARD_DIR", "cannot read '" + path.string() + "'");
+  if (!in) throw CLI::ValidationError("SHARD_DIR", "cannot read '" + name + "'");
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
@@ -85,7 +95,7 @@ void registerSweep(CLI::App& app, int& exit_code) {
   cmd->add_flag("--quiet", args->quiet, "No per-speed progress lines");
   cmd->callback([args, &exit_code]() {
     // Everything that can fail on bad input happens before the output directory is touched.
-    const OptimizeConfig config = loadOptimizeConfig(args->config);
+    OptimizeConfig config = loadOptimizeConfig(args->config);
     std::vector<double> speeds;
     try {
       speeds = sortedSpeeds(parseSpeedRange(args->speeds));
@@ -105,7 +115,10 @@ void registerSweep(CLI::App& app, int& exit_code) {
     } catch (const std::invalid_argument& e) {
       throw CLI::ValidationError("--shard", e.what());
     }
-    requireDirectoryOrAbsent(args->out);
+    // The whole sweep is written beside --out and put in place at the end (checked here,
+    // before any work): an interrupted re-run leaves the previous sweep complete.
+    StagedDirectory staged(args->out, ourOutputs(&config.solver));
+    placeIpoptOutputFile(config.solver, staged.path());
     if (config.speed)
       std::cerr << "gaitopt: sweep: note: the config's speed ("
                 << shortNumber(*config.speed, "%g")
@@ -122,8 +135,7 @@ void registerSweep(CLI::App& app, int& exit_code) {
         optimizationRequest(free_config, configuredInitialGuess(free_config, evaluator.model()));
     const Criterion criterion = config.criterion;
     const int decimals = sweepFolderDecimals(speeds);  // of the whole list: shards agree
-    const fs::path out(args->out);
-    fs::create_directories(out);
+    const fs::path out(args->out), stage(staged.path());
 
     // "v=<speed> m/s  status <status>  <criterion> <value>  elapsed <time> s"
     const auto progressLine = [&](const SweepProgress& p) {
@@ -144,10 +156,11 @@ void registerSweep(CLI::App& app, int& exit_code) {
       speed_config.options.target_speed = p.point.speed;
       const GaitEvaluator speed_evaluator(speed_config.robot, speed_config.options,
                                           speed_config.model_options);
-      const std::string dir = (out / sweepFolderName(p.point.speed, decimals)).string();
+      const std::string folder = sweepFolderName(p.point.speed, decimals);
       writeOptimizationOutputs(
-          dir, optimizationOutputs(speed_evaluator, speed_config, r, dir,
-                                   [&](JsonWriter& w) { writeSweepMembers(w, p.point); }));
+          (stage / folder).string(),
+          optimizationOutputs(speed_evaluator, speed_config, r, (out / folder).string(),
+                              [&](JsonWriter& w) { writeSweepMembers(w, p.point); }));
       if (!args->quiet)
         std::cout << "[" << p.done << "/" << p.total << "] " << progressLine(p)
                   << (p.point.attempts > 1 ? "  (" + std::to_string(p.point.attempts) + " attempts)"
@@ -156,7 +169,8 @@ void registerSweep(CLI::App& app, int& exit_code) {
                   << std::flush;
     };
     const std::vector<SweepPoint> points = sweepSpeeds(evaluator, base, speeds, settings, progress);
-    writeFileAtomically((out / "sweep.csv").string(), sweepCsv(evaluator, points));
+    writeFileAtomically((stage / "sweep.csv").string(), sweepCsv(evaluator, points));
+    staged.commit();
 
     std::vector<std::string> failed;
     for (const SweepPoint& p : points)
@@ -202,7 +216,9 @@ void registerSweepMerge(CLI::App& app, int& exit_code) {
     }
     requireDirectoryOrAbsent(args->out);
     const fs::path out(args->out);
-    fs::create_directories(out);
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    if (ec) throw OutputError("--out '" + args->out + "' cannot be created: " + ec.message());
     writeFileAtomically((out / "sweep.csv").string(), merged);
     std::size_t rows = 0, optimal = 0;
     std::istringstream in(merged);

@@ -17,34 +17,30 @@ constexpr int kMaxNodes = 512;
 // A step lasts about a second; 100 kHz already gives ~10^5 rows per file.
 constexpr double kMaxSampleRate = 1e5;
 
-// Each reader returns `fallback` when the key is absent and range-checks a present value.
-double positiveOr(const YamlMap& m, const std::string& key, double fallback) {
-  const std::optional<double> v = m.optionalNumber(key);
-  if (!v) return fallback;
-  if (!(*v > 0.0)) throw m.error(key, "must be > 0, got " + showNumber(*v));
-  return *v;
-}
-
-double nonNegativeOr(const YamlMap& m, const std::string& key, double fallback) {
-  const std::optional<double> v = m.optionalNumber(key);
-  if (!v) return fallback;
-  if (*v < 0.0) throw m.error(key, "must be >= 0, got " + showNumber(*v));
-  return *v;
-}
-
-double negativeOr(const YamlMap& m, const std::string& key, double fallback) {
-  const std::optional<double> v = m.optionalNumber(key);
-  if (!v) return fallback;
-  if (!(*v < 0.0)) throw m.error(key, "must be < 0, got " + showNumber(*v));
-  return *v;
-}
+// Documented ranges of the gait options (README, "Gait files" and "Reliability"): the lower
+// bounds are those of the thesis' formulation, the upper ones refuse values that make every
+// step undefined (a friction coefficient of 1e307) or are not physical.
+namespace ranges {
+const Range kFriction{0.0, 10.0, true, ""};
+const Range kClearance{0.0, 1.0, false, "m"};
+const Range kNormalForce{0.0, 1e4, false, "N"};
+const Range kSampleRate{0.0, kMaxSampleRate, true, "Hz"};
+const Range kFMin{0.0, 1e3, true, "kg m^2"};
+const Range kRate{0.0, 100.0, false, "rad/s"};
+const Range kNegativeRate{-100.0, 0.0, false, "rad/s"};
+const Range kAngle{0.0, 1.0, false, "rad"};
+const Range kReach{0.0, 1.0, false, "m^2"};
+const Range kKappa{0.0, 10.0, true, ""};
+const Range kSpeed{0.0, kMaxWalkingSpeed, false, "m/s"};
+const Range kSmoothing{0.0, 1e3, true, "rad/s"};
+}  // namespace ranges
 
 int nodesOr(const YamlMap& m, const std::string& key, int fallback) {
   const std::optional<double> v = m.optionalNumber(key);
   if (!v) return fallback;
   if (std::floor(*v) != *v || *v < 2.0 || *v > kMaxNodes) {
     throw m.error(key, "must be an integer from 2 to " + std::to_string(kMaxNodes) + ", got " +
-                           showNumber(*v));
+                           m.text(key));
   }
   return static_cast<int>(*v);
 }
@@ -111,7 +107,7 @@ Parameterisation parseParameterisation(const YamlMap& doc, Landing landing) {
     if (!v) return fallback;
     if (*v != std::floor(*v) || *v < 0 || *v > kMaxGaitParameters)
       throw m.error(key, "must be a whole number from 0 to " + std::to_string(kMaxGaitParameters) +
-                             ", got " + showNumber(*v));
+                             ", got " + m.text(key));
     return static_cast<int>(*v);
   };
   par.ss_points = count("ss_points", 1);
@@ -136,7 +132,7 @@ GaitParameters parseGaitParameters(const YamlMap& m, const Parameterisation& par
   // Implicit requirements of the parametrisation (digest §3.5 [G]): a forward step and a
   // double support of positive duration (the DS α(t) cubic is singular at T_DS = 0).
   for (int i : {static_cast<int>(kStepLength), static_cast<int>(kTDS)}) {
-    if (!(p(i) > 0.0)) throw m.error(names[i], "must be > 0, got " + showNumber(p(i)));
+    if (!(p(i) > 0.0)) throw m.error(names[i], "must be > 0, got " + m.text(names[i]));
   }
   m.rejectUnknownKeys();
   return p;
@@ -144,36 +140,37 @@ GaitParameters parseGaitParameters(const YamlMap& m, const Parameterisation& par
 
 GaitOptions parseGaitOptions(const YamlMap& m, ModelOptions& model_options) {
   GaitOptions o;
-  o.friction_coefficient = positiveOr(m, "friction_coefficient", o.friction_coefficient);
-  o.clearance_height = nonNegativeOr(m, "clearance_height", o.clearance_height);
-  o.min_normal_force = nonNegativeOr(m, "min_normal_force", o.min_normal_force);
+  o.friction_coefficient =
+      numberInOr(m, "friction_coefficient", ranges::kFriction, o.friction_coefficient);
+  o.clearance_height = numberInOr(m, "clearance_height", ranges::kClearance, o.clearance_height);
+  o.min_normal_force = numberInOr(m, "min_normal_force", ranges::kNormalForce, o.min_normal_force);
   o.dry_friction = booleanOr(m, "dry_friction", o.dry_friction);
   if (const int k = choiceOr(m, "ds_distribution", kDsDistributions); k >= 0) {
     o.ds_distribution = k == 0 ? DsDistribution::Torque : DsDistribution::Energy;
   }
-  o.sample_rate = positiveOr(m, "sample_rate", o.sample_rate);
-  if (o.sample_rate > kMaxSampleRate) {
-    throw m.error("sample_rate", "must be at most " + showNumber(kMaxSampleRate) + " Hz, got " +
-                                     showNumber(o.sample_rate));
-  }
+  o.sample_rate = numberInOr(m, "sample_rate", ranges::kSampleRate, o.sample_rate);
   o.ss_nodes = nodesOr(m, "ss_nodes", o.ss_nodes);
   o.ds_nodes = nodesOr(m, "ds_nodes", o.ds_nodes);
-  o.f_min = positiveOr(m, "f_min", o.f_min);
-  o.alphadot_margin = nonNegativeOr(m, "alphadot_margin", o.alphadot_margin);
-  o.ds_alphadot_max = negativeOr(m, "ds_alphadot_max", o.ds_alphadot_max);
-  o.angle_margin = nonNegativeOr(m, "angle_margin", o.angle_margin);
-  o.ds_alpha_range_min = nonNegativeOr(m, "ds_alpha_range_min", o.ds_alpha_range_min);
-  o.reach_margin = nonNegativeOr(m, "reach_margin", o.reach_margin);
-  o.kappa_min = positiveOr(m, "kappa_min", o.kappa_min);
-  o.joint_limit_margin = nonNegativeOr(m, "joint_limit_margin", o.joint_limit_margin);
+  o.f_min = numberInOr(m, "f_min", ranges::kFMin, o.f_min);
+  o.alphadot_margin = numberInOr(m, "alphadot_margin", ranges::kRate, o.alphadot_margin);
+  o.ds_alphadot_max = numberInOr(m, "ds_alphadot_max", ranges::kNegativeRate, o.ds_alphadot_max);
+  if (!(o.ds_alphadot_max < 0.0)) {
+    throw m.error("ds_alphadot_max", "must be < 0, got " + m.text("ds_alphadot_max"));
+  }
+  o.angle_margin = numberInOr(m, "angle_margin", ranges::kAngle, o.angle_margin);
+  o.ds_alpha_range_min =
+      numberInOr(m, "ds_alpha_range_min", ranges::kAngle, o.ds_alpha_range_min);
+  o.reach_margin = numberInOr(m, "reach_margin", ranges::kReach, o.reach_margin);
+  o.kappa_min = numberInOr(m, "kappa_min", ranges::kKappa, o.kappa_min);
+  o.joint_limit_margin = numberInOr(m, "joint_limit_margin", ranges::kAngle, o.joint_limit_margin);
   o.full_torque_envelope = booleanOr(m, "full_torque_envelope", o.full_torque_envelope);
-  o.target_speed = nonNegativeOr(m, "target_speed", o.target_speed);
   o.parameterisation.landing = parseLanding(m);
+  o.target_speed = numberInOr(m, "target_speed", ranges::kSpeed, o.target_speed);
   if (const int k = choiceOr(m, "rotor", kRotorModels); k >= 0) {
     model_options.rotor = k == 0 ? RotorModel::Exact : RotorModel::HighGear;
   }
   model_options.friction_smoothing =
-      positiveOr(m, "friction_smoothing", model_options.friction_smoothing);
+      numberInOr(m, "friction_smoothing", ranges::kSmoothing, model_options.friction_smoothing);
   m.rejectUnknownKeys();
   return o;
 }

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <filesystem>
 
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/opt/initial_guess.hpp"
@@ -31,8 +32,8 @@ int integerOr(const YamlMap& m, const std::string& key, int minimum, int fallbac
   const std::optional<double> v = m.optionalNumber(key);
   if (!v) return fallback;
   if (std::floor(*v) != *v || *v < minimum || *v > 1e9) {
-    throw m.error(key, "must be an integer >= " + std::to_string(minimum) + ", got " +
-                           showNumber(*v));
+    throw m.error(key, "must be an integer >= " + std::to_string(minimum) + " and <= 1e9, got " +
+                           m.text(key));
   }
   return static_cast<int>(*v);
 }
@@ -44,10 +45,39 @@ const std::array<const char*, 2> kHierarchies = {"staged", "direct"};
 const std::array<const char*, 2> kGradientModes = {"exact", "finite_difference"};
 const std::array<const char*, 1> kParameterisations = {"miossec"};
 
+bool isPlainFileName(const std::string& name) {
+  return !name.empty() && name != "." && name != ".." && name.size() <= 255 &&
+         name.find('/') == std::string::npos && printable(name) == name;
+}
+
 // A referenced file must exist and be readable; otherwise the error is at the config's key.
 void requireReadable(const YamlMap& doc, const std::string& key, const std::string& what,
                      const std::string& resolved, const std::string& given) {
   requireReadableFile(doc, key, what, resolved, given, "configuration file");
+}
+
+// One Ipopt option, checked against Ipopt's own registered options (unknown key, wrong type,
+// value out of its range or list). Options naming files are confined to the run's output
+// directory: output_file must be a plain file name (placed in --out at run time, see
+// placeIpoptOutputFile) and option_file_name is refused. A linear solver must be loadable.
+void checkIpoptOption(const YamlMap& ipopt, const std::pair<std::string, std::string>& option) {
+  const auto& [key, value] = option;
+  if (key == "option_file_name") {
+    throw ipopt.error(key, "not allowed: put the Ipopt options in this file instead");
+  }
+  if (key == "output_file" && !isPlainFileName(value)) {
+    throw ipopt.error(key, "must be a plain file name (it is written inside --out), got '" +
+                               printable(value) + "'");
+  }
+  if (!rejectedIpoptOption({option}).empty()) {
+    throw ipopt.error(key, "Ipopt rejects this option or its value '" + printable(value) +
+                               "' (see the Ipopt options reference)");
+  }
+  if (key == "linear_solver" && !ipoptLinearSolverAvailable(value)) {
+    throw ipopt.error(key, "linear solver '" + printable(value) +
+                               "' is not available in this Ipopt build (e.g. the HSL solvers "
+                               "need libhsl); the default is mumps");
+  }
 }
 
 SolverSettings parseSolver(const YamlMap& m) {
@@ -61,7 +91,9 @@ SolverSettings parseSolver(const YamlMap& m) {
                                                               : HierarchyStrategy::Staged;
   s.max_iter = integerOr(m, "max_iter", 1, s.max_iter);
   if (const std::optional<double> tol = m.optionalNumber("tol")) {
-    if (!(*tol > 0.0)) throw m.error("tol", "must be > 0, got " + showNumber(*tol));
+    if (!(*tol > 0.0) || *tol > 1.0) {
+      throw m.error("tol", "must be > 0 and <= 1, got " + m.text("tol"));
+    }
     s.tol = *tol;
   }
   if (m.has("constraint_exchange")) s.constraint_exchange = m.boolean("constraint_exchange");
@@ -69,15 +101,13 @@ SolverSettings parseSolver(const YamlMap& m) {
                                                                : GradientMode::Exact;
   s.print_every = integerOr(m, "print_every", 0, s.print_every);
   if (const std::optional<YamlMap> ipopt = m.optionalMap("ipopt")) {
-    s.ipopt_options = ipopt->scalarEntries();
-    // Checked one by one so that the error names the first option Ipopt rejects.
-    for (const auto& option : s.ipopt_options) {
-      if (!rejectedIpoptOption({option}).empty()) {
-        throw ipopt->error(option.first, "Ipopt rejects this option or its value '" +
-                                             option.second +
-                                             "' (see the Ipopt options reference)");
-      }
+    if (s.backend != Backend::Ipopt) {
+      throw m.error("ipopt", std::string("Ipopt options are used only with backend: ipopt (this "
+                                         "run uses ") +
+                                 backendName(s.backend) + "); remove them or change the backend");
     }
+    s.ipopt_options = ipopt->scalarEntries();
+    for (const auto& option : s.ipopt_options) checkIpoptOption(*ipopt, option);
   }
   return s;
 }
@@ -108,9 +138,10 @@ OptimizeConfig loadOptimizeConfig(const std::string& path) {
   }
 
   if (const std::optional<double> speed = doc.optionalNumber("speed")) {
-    if (!(*speed > 0.0)) {
-      throw doc.error("speed", "must be > 0 m/s (leave it out for a free speed), got " +
-                                   showNumber(*speed));
+    if (!(*speed > 0.0) || *speed > kMaxWalkingSpeed) {
+      throw doc.error("speed", "must be > 0 and <= " + showNumber(kMaxWalkingSpeed) +
+                                   " m/s (leave it out for a free speed), got " +
+                                   doc.text("speed"));
     }
     c.speed = *speed;
   }
@@ -154,6 +185,12 @@ OptimizeConfig loadOptimizeConfig(const std::string& path) {
                                            c.parameterisation + ")");
   }
   return c;
+}
+
+void placeIpoptOutputFile(SolverSettings& solver, const std::string& dir) {
+  for (auto& [key, value] : solver.ipopt_options) {
+    if (key == "output_file") value = (std::filesystem::path(dir) / value).string();
+  }
 }
 
 GaitParameters configuredInitialGuess(const OptimizeConfig& config, const Model& model) {

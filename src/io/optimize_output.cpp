@@ -72,12 +72,8 @@ void writeOptimizationOutputs(const std::string& dir, const OptimizationOutputs&
   fs::create_directories(d);
   writeFileAtomically((d / "summary.json").string(), outputs.summary_json);
   writeFileAtomically((d / "gait.yaml").string(), outputs.gait_yaml);
-  const fs::path csv_path = d / "trajectory.csv";
   if (outputs.trajectory_csv) {
-    writeFileAtomically(csv_path.string(), *outputs.trajectory_csv);
-  } else {
-    std::error_code ec;
-    fs::remove(csv_path, ec);  // a trajectory from an earlier run would not match this step
+    writeFileAtomically((d / "trajectory.csv").string(), *outputs.trajectory_csv);
   }
 }
 

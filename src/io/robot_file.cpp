@@ -1,5 +1,6 @@
 #include "gaitopt/io/robot_file.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <optional>
@@ -18,61 +19,76 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kRadPerDeg = kPi / 180.0;
 
-double positive(const YamlMap& m, const std::string& key) {
-  const double value = m.number(key);
-  if (value <= 0.0) throw m.error(key, "must be > 0, got " + showNumber(value));
-  return value;
+// Documented physical ranges of every robot number (README, "Robot description files" and
+// "Reliability"): wide enough for any RABBIT-class biped, narrow enough to refuse typos such as
+// a mass of 1e300 or a denormal one, which would make every step undefined.
+namespace ranges {
+const Range kLength{1e-3, 10.0, false, "m"};
+const Range kMass{1e-3, 1e3, false, "kg"};
+const Range kInertia{1e-6, 1e3, false, "kg m^2"};
+const Range kRotorInertia{0.0, 1.0, false, "kg m^2"};
+const Range kGearRatio{1.0, 1e4, false, ""};
+const Range kTorqueConstant{1e-4, 100.0, false, "N m/A"};
+const Range kResistance{1e-4, 1e3, false, "ohm"};
+const Range kCoulomb{0.0, 1e3, false, "N m"};
+const Range kViscous{0.0, 1e3, false, "N m s/rad"};
+const Range kEnvelopeSpeed{0.0, 1e4, false, "rad/s"};
+const Range kEnvelopeTorque{0.0, 1e4, false, "N m"};
+const Range kJointAngle{-720.0, 720.0, false, "deg"};
+const Range kGravity{0.1, 100.0, false, "m/s^2"};
+const Range kBarMass{0.0, 1e3, false, "kg"};
+}  // namespace ranges
+
+// One value per actuated joint (knee 1, hip 1, hip 2, knee 2).
+std::array<double, 4> joints(const YamlMap& m, const std::string& key, const Range& range) {
+  const std::vector<double> values = numbersIn(m, key, 4, range);
+  std::array<double, 4> out{};
+  std::copy(values.begin(), values.end(), out.begin());
+  return out;
 }
 
-double nonNegative(const YamlMap& m, const std::string& key) {
-  const double value = m.number(key);
-  if (value < 0.0) throw m.error(key, "must be >= 0, got " + showNumber(value));
-  return value;
-}
-
-double optionalPositive(const YamlMap& m, const std::string& key, double fallback) {
-  return m.optionalNumber(key) ? positive(m, key) : fallback;
-}
-
-// One value per actuated joint (knee 1, hip 1, hip 2, knee 2), each >= 0.
-std::array<double, 4> nonNegativeJoints(const YamlMap& m, const std::string& key) {
-  const std::vector<double> values = m.numbers(key, 4);
-  std::array<double, 4> joints{};
-  for (std::size_t j = 0; j < joints.size(); ++j) {
-    if (values[j] < 0.0) throw m.elementError(key, j, "must be >= 0, got " + showNumber(values[j]));
-    joints[j] = values[j];
+// Bodies C1..C5 stored under keys <letter>1..<letter>5 (m1..m5, s1..s5, I1..I5).
+std::array<double, 5> bodies(const YamlMap& m, const std::string& letter, const Range& range) {
+  std::array<double, 5> out{};
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    out[i] = numberIn(m, letter + std::to_string(i + 1), range);
   }
-  return joints;
+  return out;
 }
 
-// Bodies C1..C5 stored under keys <letter>1..<letter>5 (m1..m5, s1..s5, I1..I5), each > 0.
-std::array<double, 5> positiveBodies(const YamlMap& m, const std::string& letter) {
-  std::array<double, 5> bodies{};
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    bodies[i] = positive(m, letter + std::to_string(i + 1));
+// Each CoM lies on its link (digest §1.3): s1, s5 from the knee along the tibias l1, l5; s2, s4
+// from the hip along the femurs l2, l4; s3 from the hip along the trunk.
+void requireComWithinLinks(const YamlMap& m, const RobotParams& robot) {
+  const std::array<double, 5> link{robot.l1, robot.l2, robot.trunk_length, robot.l4, robot.l5};
+  const std::array<const char*, 5> name{"l1", "l2", "trunk_length", "l4", "l5"};
+  for (std::size_t i = 0; i < link.size(); ++i) {
+    const std::string key = "s" + std::to_string(i + 1);
+    if (robot.s[i] > link[i]) {
+      throw m.error(key, "the centre of mass must lie within its link: " + m.text(key) +
+                             " m > " + name[i] + " = " + showNumber(link[i]) + " m");
+    }
   }
-  return bodies;
 }
 
 void readLengths(const YamlMap& m, RobotParams& robot) {
-  robot.l1 = positive(m, "l1");
-  robot.l2 = positive(m, "l2");
-  robot.l4 = positive(m, "l4");
-  robot.l5 = positive(m, "l5");
+  robot.l1 = numberIn(m, "l1", ranges::kLength);
+  robot.l2 = numberIn(m, "l2", ranges::kLength);
+  robot.l4 = numberIn(m, "l4", ranges::kLength);
+  robot.l5 = numberIn(m, "l5", ranges::kLength);
 }
 
 // Piecewise-linear envelope (3.47): breakpoints must be ordered for interpolation to work.
 TorqueEnvelope readEnvelope(const YamlMap& m) {
   TorqueEnvelope envelope;
-  const std::vector<double> speed = m.numbers("speed", envelope.speed.size());
-  const std::vector<double> torque = m.numbers("torque", envelope.torque.size());
+  const std::vector<double> speed =
+      numbersIn(m, "speed", envelope.speed.size(), ranges::kEnvelopeSpeed);
+  const std::vector<double> torque =
+      numbersIn(m, "torque", envelope.torque.size(), ranges::kEnvelopeTorque);
   for (std::size_t k = 0; k < envelope.speed.size(); ++k) {
     if (k == 0 ? speed[k] < 0.0 : speed[k] <= speed[k - 1]) {
       throw m.elementError("speed", k, "speeds must be >= 0 and strictly increasing, got " +
-                                           showNumber(speed[k]));
+                                           m.elementText("speed", k));
     }
-    if (torque[k] < 0.0)
-      throw m.elementError("torque", k, "must be >= 0, got " + showNumber(torque[k]));
     envelope.speed[k] = speed[k];
     envelope.torque[k] = torque[k];
   }
@@ -80,21 +96,22 @@ TorqueEnvelope readEnvelope(const YamlMap& m) {
 }
 
 void readMotors(const YamlMap& m, RobotParams& robot) {
-  robot.rotor_inertia = nonNegativeJoints(m, "rotor_inertia");  // 0 = lumped into the links
-  robot.gear_ratio = positive(m, "gear_ratio");
-  robot.motor_torque_constant = positive(m, "torque_constant");
-  robot.motor_resistance = positive(m, "resistance");
+  // 0 = lumped into the links
+  robot.rotor_inertia = joints(m, "rotor_inertia", ranges::kRotorInertia);
+  robot.gear_ratio = numberIn(m, "gear_ratio", ranges::kGearRatio);
+  robot.motor_torque_constant = numberIn(m, "torque_constant", ranges::kTorqueConstant);
+  robot.motor_resistance = numberIn(m, "resistance", ranges::kResistance);
   if (const auto envelope = m.optionalMap("envelope")) robot.envelope = readEnvelope(*envelope);
 }
 
 // Limits are written in degrees, as printed in (3.39), and stored in radians.
 std::pair<double, double> degreeRange(const YamlMap& m, const std::string& min_key,
                                       const std::string& max_key) {
-  const double lo = m.number(min_key);
-  const double hi = m.number(max_key);
+  const double lo = numberIn(m, min_key, ranges::kJointAngle);
+  const double hi = numberIn(m, max_key, ranges::kJointAngle);
   if (lo >= hi) {
-    throw m.error(min_key, "must be less than " + max_key + " (" + showNumber(lo) + " >= " +
-                               showNumber(hi) + " deg)");
+    throw m.error(min_key, "must be less than " + max_key + " (" + m.text(min_key) + " >= " +
+                               m.text(max_key) + " deg)");
   }
   return {lo * kRadPerDeg, hi * kRadPerDeg};
 }
@@ -111,13 +128,13 @@ SupportBar readBarGeometry(const YamlMap& bar_map, const YamlMap& m) {
   SupportBar bar;
   bar.present = true;
   bar.from_geometry = true;
-  bar.bar_length = positive(m, "bar_length");
-  bar.overhang = positive(m, "overhang");
-  bar.bar_mass = positive(m, "bar_mass");
-  bar.counterweight_mass = positive(m, "counterweight_mass");
+  bar.bar_length = numberIn(m, "bar_length", ranges::kLength);
+  bar.overhang = numberIn(m, "overhang", ranges::kLength);
+  bar.bar_mass = numberIn(m, "bar_mass", ranges::kMass);
+  bar.counterweight_mass = numberIn(m, "counterweight_mass", ranges::kMass);
   if (bar.overhang >= bar.bar_length) {
-    throw m.error("overhang", "must be shorter than bar_length (" + showNumber(bar.overhang) +
-                                  " >= " + showNumber(bar.bar_length) + ")");
+    throw m.error("overhang", "must be shorter than bar_length (" + m.text("overhang") +
+                                  " >= " + m.text("bar_length") + ")");
   }
   bar.equivalent_mass =
       barEquivalentMass(bar.bar_length, bar.overhang, bar.bar_mass, bar.counterweight_mass);
@@ -142,7 +159,7 @@ SupportBar readSupportBar(const YamlMap& m) {
   }
   SupportBar bar;
   bar.present = true;
-  bar.equivalent_mass = nonNegative(m, "equivalent_mass");
+  bar.equivalent_mass = numberIn(m, "equivalent_mass", ranges::kBarMass);
   return bar;
 }
 
@@ -155,22 +172,24 @@ RobotParams parseRobot(const YAML::Node& root, const std::string& file) {
   robot.name = doc.string("name");
   if (robot.name.empty()) throw doc.error("name", "must not be empty");
   readLengths(doc.map("lengths"), robot);
-  robot.s = positiveBodies(doc.map("com_offsets"), "s");
-  robot.mass = positiveBodies(doc.map("masses"), "m");
-  robot.inertia = positiveBodies(doc.map("inertias"), "I");
+  const YamlMap com_offsets = doc.map("com_offsets");
+  robot.s = bodies(com_offsets, "s", Range{0.0, ranges::kLength.max, true, "m"});
+  robot.mass = bodies(doc.map("masses"), "m", ranges::kMass);
+  robot.inertia = bodies(doc.map("inertias"), "I", ranges::kInertia);
   // Without `motors` the joints are driven directly (a person, a direct-drive robot): no rotor
   // inertia enters (1.17); without `friction` the joints are frictionless (1.21).
   if (const auto motors = doc.optionalMap("motors")) readMotors(*motors, robot);
   if (const auto friction = doc.optionalMap("friction")) {
-    robot.coulomb = nonNegativeJoints(*friction, "coulomb");
-    robot.viscous = nonNegativeJoints(*friction, "viscous");
+    robot.coulomb = joints(*friction, "coulomb", ranges::kCoulomb);
+    robot.viscous = joints(*friction, "viscous", ranges::kViscous);
   }
   if (const auto limits = doc.optionalMap("joint_limits_deg")) {
     robot.limits = readJointLimits(*limits);
   }
-  robot.gravity = optionalPositive(doc, "gravity", robot.gravity);
+  robot.gravity = numberInOr(doc, "gravity", ranges::kGravity, robot.gravity);
   if (const auto bar = doc.optionalMap("support_bar")) robot.bar = readSupportBar(*bar);
-  robot.trunk_length = optionalPositive(doc, "trunk_length", robot.trunk_length);
+  robot.trunk_length = numberInOr(doc, "trunk_length", ranges::kLength, robot.trunk_length);
+  requireComWithinLinks(com_offsets, robot);
   readRobotExtensions(doc, robot);
   doc.rejectUnknownKeys();
   return robot;

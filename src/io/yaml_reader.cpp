@@ -1,5 +1,9 @@
 #include "gaitopt/io/yaml_reader.hpp"
 
+#include <yaml-cpp/depthguard.h>
+#include <yaml-cpp/eventhandler.h>
+
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -25,8 +29,8 @@ std::string describe(const YAML::Node& node) {
     case YAML::NodeType::Sequence: return "a sequence";
     case YAML::NodeType::Map: return "a mapping";
     case YAML::NodeType::Scalar:
-      return isQuoted(node) ? "the quoted string \"" + node.Scalar() + "\""
-                            : "'" + node.Scalar() + "'";
+      return isQuoted(node) ? "the quoted string \"" + printable(node.Scalar()) + "\""
+                            : "'" + printable(node.Scalar()) + "'";
     default: return "nothing (null)";
   }
 }
@@ -54,6 +58,85 @@ std::string elementPath(const std::string& sequence_path, std::size_t index) {
   return sequence_path + "[" + std::to_string(index) + "]";
 }
 
+// Deepest chain of mappings/sequences inside `node` (a scalar is 0).
+int nesting(const YAML::Node& node, int limit) {
+  if (!node.IsMap() && !node.IsSequence()) return 0;
+  int deepest = 0;
+  for (const auto& item : node) {
+    const YAML::Node child = node.IsMap() ? item.second : YAML::Node(item);
+    deepest = std::max(deepest, nesting(child, limit));
+    if (deepest >= limit) break;  // enough to refuse; alias loops stay bounded too
+  }
+  return deepest + 1;
+}
+
+// Records where documents start; ignores everything else.
+class DocumentStarts : public YAML::EventHandler {
+ public:
+  std::vector<YAML::Mark> starts;
+  void OnDocumentStart(const YAML::Mark& mark) override { starts.push_back(mark); }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
+// The line of a second document in `text` (already parsed once), 0 if there is none. Parsed
+// one document at a time, at most two: yaml-cpp 0.7's LoadAll loops forever on some invalid
+// input (e.g. a line starting with ','; jbeder/yaml-cpp#1040, fixed upstream in #1319), where
+// the parser reports ever more empty documents. A real second document needs a '---' or '...'
+// marker line, which those bogus ones lack.
+int secondDocumentLine(const std::string& text) {
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  DocumentStarts handler;
+  if (!parser.HandleNextDocument(handler) || !parser.HandleNextDocument(handler)) return 0;
+  const bool marker = text.rfind("---", 0) == 0 || text.rfind("...", 0) == 0 ||
+                      text.find("\n---") != std::string::npos ||
+                      text.find("\n...") != std::string::npos;
+  return marker && handler.starts.size() > 1 ? std::max(1, lineOf(handler.starts[1])) : 0;
+}
+
+ConfigError tooLarge(const std::string& file) {
+  return ConfigError(file, "", 0, "file larger than " +
+                                      std::to_string(YamlLimits::kMaxFileBytes) + " bytes (limit)");
+}
+
+// Text checks done before parsing: size, line length and control characters (binary data
+// would otherwise be echoed to the terminal by the parser's messages).
+void checkText(const std::string& text, const std::string& file) {
+  if (text.size() > YamlLimits::kMaxFileBytes) {
+    throw tooLarge(file);
+  }
+  int line = 1;
+  std::size_t line_start = 0;
+  for (std::size_t i = 0; i <= text.size(); ++i) {
+    const bool end = i == text.size() || text[i] == '\n';
+    if (end && i - line_start > YamlLimits::kMaxLineBytes) {
+      throw ConfigError(file, "", line, "line longer than " +
+                                            std::to_string(YamlLimits::kMaxLineBytes) +
+                                            " bytes (limit)");
+    }
+    if (end) {
+      ++line;
+      line_start = i + 1;
+      continue;
+    }
+    const auto c = static_cast<unsigned char>(text[i]);
+    if ((c < 0x20 && c != '\t' && c != '\r') || c == 0x7f) {
+      throw ConfigError(file, "", line, "control character " + printable(std::string(1, text[i])) +
+                                            ": not a text file");
+    }
+  }
+}
+
 std::string joined(const std::set<std::string>& names) {
   std::string list;
   for (const auto& name : names) list += (list.empty() ? "" : ", ") + name;
@@ -76,13 +159,40 @@ YAML::Node loadYamlFile(const std::string& path) {
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw ConfigError(path, "", 0, "no such file (or not a regular file)");
   }
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path, "", 0, "cannot open the file for reading");
-  try {
-    return YAML::Load(in);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError(path, "", lineOf(e.mark), "invalid YAML: " + e.msg);
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec && size > YamlLimits::kMaxFileBytes) {
+    throw tooLarge(path);
   }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(path, "", 0, "cannot open the file for reading");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseYamlText(text.str(), path);
+}
+
+YAML::Node parseYamlText(const std::string& text, const std::string& file) {
+  checkText(text, file);
+  YAML::Node document;
+  int second_document = 0;
+  try {
+    document = YAML::Load(text);
+    second_document = secondDocumentLine(text);  // may find a syntax error after the first
+  } catch (const YAML::DeepRecursion& e) {
+    throw ConfigError(file, "", lineOf(e.mark), "nested deeper than " +
+                                                    std::to_string(YamlLimits::kMaxNesting) +
+                                                    " levels (limit)");
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(file, "", lineOf(e.mark), "invalid YAML: " + e.msg);
+  }
+  if (second_document > 0) {
+    throw ConfigError(file, "", second_document,
+                      "a second YAML document ('---'): one document per file");
+  }
+  if (nesting(document, YamlLimits::kMaxNesting + 1) > YamlLimits::kMaxNesting) {
+    throw ConfigError(file, "", 0, "nested deeper than " +
+                                       std::to_string(YamlLimits::kMaxNesting) + " levels (limit)");
+  }
+  return document;
 }
 
 YamlMap::YamlMap(const YAML::Node& node, std::string file, std::string path_prefix)
@@ -155,11 +265,11 @@ std::string YamlMap::string(const std::string& key) const {
 
 bool YamlMap::boolean(const std::string& key) const {
   const YAML::Node v = require(key).second;
-  bool value = false;
-  if (!v.IsScalar() || isQuoted(v) || !YAML::convert<bool>::decode(v, value)) {
+  // Only the spellings the README lists: YAML 1.1's yes/no/on/off are easy to write by mistake.
+  if (!v.IsScalar() || isQuoted(v) || (v.Scalar() != "true" && v.Scalar() != "false")) {
     throw error(key, "expected true or false, got " + describe(v));
   }
-  return value;
+  return v.Scalar() == "true";
 }
 
 std::vector<double> YamlMap::numbers(const std::string& key, std::size_t expected_size) const {
@@ -190,6 +300,18 @@ std::optional<YamlMap> YamlMap::optionalMap(const std::string& key) const {
     return std::nullopt;
   }
   return map(key);
+}
+
+std::string YamlMap::text(const std::string& key) const {
+  const auto entry = lookup(state_->node, key);
+  return entry && entry->second.IsScalar() ? printable(entry->second.Scalar()) : "";
+}
+
+std::string YamlMap::elementText(const std::string& key, std::size_t index) const {
+  const auto entry = lookup(state_->node, key);
+  if (!entry || !entry->second.IsSequence() || index >= entry->second.size()) return "";
+  const YAML::Node element = entry->second[index];
+  return element.IsScalar() ? printable(element.Scalar()) : "";
 }
 
 std::vector<std::pair<std::string, std::string>> YamlMap::scalarEntries() const {
@@ -236,6 +358,35 @@ std::string showNumber(double value) {
   return out.str();
 }
 
+std::string Range::describe() const {
+  return std::string(min_open ? "(" : "[") + showNumber(min) + ", " + showNumber(max) + "]" +
+         (*unit ? std::string(" ") + unit : std::string());
+}
+
+double numberIn(const YamlMap& m, const std::string& key, const Range& range) {
+  const double value = m.number(key);
+  if (!range.contains(value)) {
+    throw m.error(key, "must be in " + range.describe() + ", got " + m.text(key));
+  }
+  return value;
+}
+
+double numberInOr(const YamlMap& m, const std::string& key, const Range& range, double fallback) {
+  return m.optionalNumber(key) ? numberIn(m, key, range) : fallback;
+}
+
+std::vector<double> numbersIn(const YamlMap& m, const std::string& key, std::size_t size,
+                              const Range& range) {
+  const std::vector<double> values = m.numbers(key, size);
+  for (std::size_t i = 0; i < size; ++i) {
+    if (!range.contains(values[i])) {
+      throw m.elementError(key, i, "must be in " + range.describe() + ", got " +
+                                       m.elementText(key, i));
+    }
+  }
+  return values;
+}
+
 int choiceIndex(const YamlMap& m, const std::string& key, const char* const* choices,
                 std::size_t count) {
   const std::string v = m.string(key);
@@ -244,7 +395,7 @@ int choiceIndex(const YamlMap& m, const std::string& key, const char* const* cho
     if (v == choices[i]) return static_cast<int>(i);
     list += (i == 0 ? "'" : ", '") + std::string(choices[i]) + "'";
   }
-  throw m.error(key, "expected one of " + list + ", got '" + v + "'");
+  throw m.error(key, "expected one of " + list + ", got '" + printable(v) + "'");
 }
 
 std::string resolveAgainstFile(const std::string& config_path, const std::string& file) {

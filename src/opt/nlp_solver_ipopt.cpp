@@ -130,7 +130,68 @@ std::string applyIpoptOptions(Ipopt::OptionsList& o,
   return "";
 }
 
+// min (x - 1)^2 on one bounded variable: the smallest problem that makes Ipopt factorise a
+// matrix, i.e. load its linear solver.
+class ProbeProblem : public Ipopt::TNLP {
+ public:
+  bool get_nlp_info(Index& n, Index& m, Index& nnz_jac, Index& nnz_h,
+                    IndexStyleEnum& style) override {
+    n = 1;
+    m = 0;
+    nnz_jac = 0;
+    nnz_h = 1;
+    style = C_STYLE;
+    return true;
+  }
+  bool get_bounds_info(Index, Number* xl, Number* xu, Index, Number*, Number*) override {
+    xl[0] = -10.0;
+    xu[0] = 10.0;
+    return true;
+  }
+  bool get_starting_point(Index, bool, Number* x, bool, Number*, Number*, Index, bool,
+                          Number*) override {
+    x[0] = 0.0;
+    return true;
+  }
+  bool eval_f(Index, const Number* x, bool, Number& f) override {
+    f = (x[0] - 1.0) * (x[0] - 1.0);
+    return true;
+  }
+  bool eval_grad_f(Index, const Number* x, bool, Number* g) override {
+    g[0] = 2.0 * (x[0] - 1.0);
+    return true;
+  }
+  bool eval_g(Index, const Number*, bool, Index, Number*) override { return true; }
+  bool eval_jac_g(Index, const Number*, bool, Index, Index, Index*, Index*, Number*) override {
+    return true;
+  }
+  bool eval_h(Index, const Number*, bool, Number factor, Index, const Number*, bool, Index,
+              Index* rows, Index* cols, Number* values) override {
+    if (values == nullptr) {
+      rows[0] = 0;
+      cols[0] = 0;
+    } else {
+      values[0] = 2.0 * factor;
+    }
+    return true;
+  }
+  void finalize_solution(Ipopt::SolverReturn, Index, const Number*, const Number*, const Number*,
+                         Index, const Number*, const Number*, Number, const Ipopt::IpoptData*,
+                         Ipopt::IpoptCalculatedQuantities*) override {}
+};
+
 }  // namespace
+
+bool ipoptLinearSolverAvailable(const std::string& name) {
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+  app->Jnlst()->DeleteAllJournals();  // the probe must stay silent, whatever Ipopt reports
+  app->Options()->SetIntegerValue("print_level", 0);
+  app->Options()->SetStringValue("sb", "yes");
+  if (!app->Options()->SetStringValue("linear_solver", name)) return false;
+  if (app->Initialize() != Ipopt::Solve_Succeeded) return false;
+  Ipopt::SmartPtr<Ipopt::TNLP> probe = new ProbeProblem();
+  return app->OptimizeTNLP(probe) == Ipopt::Solve_Succeeded;
+}
 
 std::string rejectedIpoptOption(const std::vector<std::pair<std::string, std::string>>& options) {
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();

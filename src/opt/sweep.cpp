@@ -1,6 +1,8 @@
 #include "gaitopt/opt/sweep.hpp"
 
 #include <algorithm>
+#include <array>
+#include <optional>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +15,7 @@
 
 #include "gaitopt/gait/summary.hpp"
 #include "gaitopt/opt/initial_guess.hpp"
+#include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/json_writer.hpp"
 
 namespace gaitopt {
@@ -21,18 +24,27 @@ namespace {
 constexpr int kMaxSpeeds = 10000;
 constexpr double kDuplicateTol = 1e-9;  // m/s
 
-double parseNumber(const std::string& field, const std::string& what, const std::string& text) {
-  double v = 0.0;
-  std::size_t used = 0;
-  try {
-    v = std::stod(field, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (field.empty() || used != field.size() || !std::isfinite(v))
-    throw std::invalid_argument("speed range '" + text + "': " + what + " '" + field +
-                                "' is not a finite number");
+constexpr std::size_t kMaxCsvLineBytes = 4096;
+const std::array<const char*, 4> kStatuses = {"optimal", "infeasible", "max_iter", "failed"};
+
+// A decimal number as written in a CSV field or on the command line: digits, sign, point and
+// exponent only (no spaces, hex, inf or nan), finite. Empty when it is not one.
+std::optional<double> decimal(const std::string& field) {
+  if (field.empty() || field.size() > 64 ||
+      field.find_first_not_of("0123456789+-.eE") != std::string::npos)
+    return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(field.c_str(), &end);
+  if (end != field.c_str() + field.size() || !std::isfinite(v)) return std::nullopt;
   return v;
+}
+
+double parseNumber(const std::string& field, const std::string& what, const std::string& text) {
+  const std::optional<double> v = decimal(field);
+  if (!v)
+    throw std::invalid_argument("speed range '" + printable(text) + "': " + what + " '" +
+                                printable(field) + "' is not a finite number");
+  return *v;
 }
 
 std::vector<std::string> split(const std::string& text, char sep) {
@@ -193,6 +205,13 @@ class Chain {
   std::vector<bool> tried_default_ = std::vector<bool>(speeds_.size(), false);
 };
 
+// `v` with six significant digits, as a user would write it ("0.2", not 0.20000000000000001).
+std::string formatShort(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
 std::string field(bool available, double v) {
   return available && std::isfinite(v) ? formatDouble(v) : "";
 }
@@ -211,6 +230,9 @@ std::vector<double> parseSpeedRange(const std::string& text) {
     throw std::invalid_argument("speed range '" + text + "': start must be > 0 m/s");
   if (stop < start)
     throw std::invalid_argument("speed range '" + text + "': stop must be >= start");
+  if (stop > kMaxWalkingSpeed)
+    throw std::invalid_argument("speed range '" + text + "': stop must be <= " +
+                                formatShort(kMaxWalkingSpeed) + " m/s");
   if (step <= 0.0) throw std::invalid_argument("speed range '" + text + "': step must be > 0 m/s");
   const double intervals = std::floor((stop - start) / step + 1e-9);
   if (intervals + 1.0 > kMaxSpeeds)
@@ -225,13 +247,18 @@ std::vector<double> parseSpeedRange(const std::string& text) {
 Shard parseShard(const std::string& text) {
   const std::vector<std::string> f = split(text, '/');
   auto integer = [&](const std::string& s, const char* what) {
-    if (s.empty() || s.size() > 6 || s.find_first_not_of("0123456789") != std::string::npos)
-      throw std::invalid_argument("shard '" + text + "': " + what + " '" + s +
+    if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos)
+      throw std::invalid_argument("shard '" + printable(text) + "': " + what + " '" +
+                                  printable(s) +
                                   "' is not a non-negative integer (expected i/n, i = 0 … n-1)");
+    if (s.size() > 5 || std::stoi(s) > kMaxSpeeds)
+      throw std::invalid_argument("shard '" + text + "': " + what + " " + s + " exceeds " +
+                                  std::to_string(kMaxSpeeds) + ", the largest number of speeds");
     return std::stoi(s);
   };
   if (f.size() != 2)
-    throw std::invalid_argument("shard '" + text + "': expected i/n with 0 <= i < n, e.g. 0/4");
+    throw std::invalid_argument("shard '" + printable(text) +
+                                "': expected i/n with 0 <= i < n, e.g. 0/4");
   Shard shard{integer(f[0], "index"), integer(f[1], "count")};
   if (shard.count < 1) throw std::invalid_argument("shard '" + text + "': n must be >= 1");
   if (shard.index >= shard.count)
@@ -260,11 +287,11 @@ std::vector<double> sortedSpeeds(const std::vector<double>& speeds) {
   std::vector<double> s = speeds;
   for (double v : s)
     if (!std::isfinite(v) || v <= 0.0)
-      throw std::invalid_argument("sweep speed " + formatDouble(v) + " is not > 0 m/s");
+      throw std::invalid_argument("sweep speed " + formatShort(v) + " is not > 0 m/s");
   std::sort(s.begin(), s.end());
   for (std::size_t i = 1; i < s.size(); ++i)
     if (s[i] - s[i - 1] <= kDuplicateTol)
-      throw std::invalid_argument("sweep speed " + formatDouble(s[i]) + " m/s appears twice");
+      throw std::invalid_argument("sweep speed " + formatShort(s[i]) + " m/s appears twice");
   return s;
 }
 
@@ -361,40 +388,70 @@ std::string sweepCsv(const GaitEvaluator& ev, const std::vector<SweepPoint>& poi
   return out;
 }
 
+namespace {
+
+// One row of a sweep.csv, every column typed and range-checked (README, "Merging shards");
+// throws std::invalid_argument naming `where` (file:line) and the column. Returns the speed.
+double checkSweepRow(const std::vector<std::string>& f, const std::string& where) {
+  const std::vector<std::string> names = split(kSweepCsvHeader, ',');
+  const auto bad = [&](std::size_t c, const std::string& problem) {
+    return std::invalid_argument(where + ": column " + names[c] + ": '" + printable(f[c]) +
+                                 "' " + problem);
+  };
+  const std::optional<double> speed = decimal(f[0]);
+  if (!speed || !(*speed > 0.0) || *speed > kMaxWalkingSpeed)
+    throw bad(0, "is not a speed in (0, " + formatShort(kMaxWalkingSpeed) + "] m/s");
+  if (std::find(kStatuses.begin(), kStatuses.end(), f[1]) == kStatuses.end())
+    throw bad(1, "is not a status (optimal, infeasible, max_iter, failed)");
+  for (std::size_t c = 2; c <= 8; ++c) {  // criteria, step length, phase durations
+    const std::optional<double> v = decimal(f[c]);
+    if (!f[c].empty() && (!v || (c >= 7 && *v < 0.0)))
+      throw bad(c, c >= 7 ? "is not a duration >= 0 s (or empty)" : "is not a number (or empty)");
+  }
+  if (f[9].empty() || f[9].size() > 9 || f[9].find_first_not_of("0123456789") != std::string::npos)
+    throw bad(9, "is not a non-negative integer");
+  const std::optional<double> wall = decimal(f[10]);
+  if (!wall || *wall < 0.0) throw bad(10, "is not a duration >= 0 s");
+  return *speed;
+}
+
+}  // namespace
+
 std::string mergeSweepCsvs(const std::vector<std::string>& texts,
                            const std::vector<std::string>& names) {
   const std::size_t columns = split(kSweepCsvHeader, ',').size();
   std::vector<std::pair<double, std::string>> rows;
   std::vector<std::string> origin;
   for (std::size_t t = 0; t < texts.size(); ++t) {
-    const std::string name = t < names.size() ? names[t] : "input " + std::to_string(t + 1);
+    const std::string name =
+        printable(t < names.size() ? names[t] : "input " + std::to_string(t + 1));
+    if (texts[t].size() > kMaxSweepCsvBytes)
+      throw std::invalid_argument(name + ": larger than " + std::to_string(kMaxSweepCsvBytes) +
+                                  " bytes (limit)");
     std::istringstream in(texts[t]);
     std::string line;
     if (!std::getline(in, line)) throw std::invalid_argument(name + ": empty file, no header");
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line != kSweepCsvHeader)
-      throw std::invalid_argument(name + ": header '" + line + "' differs from '" +
+      throw std::invalid_argument(name + ": header '" + printable(line) + "' differs from '" +
                                   kSweepCsvHeader + "'");
     int line_no = 1;
     while (std::getline(in, line)) {
       ++line_no;
+      const std::string where = name + ":" + std::to_string(line_no);
+      if (line.size() > kMaxCsvLineBytes)
+        throw std::invalid_argument(where + ": line longer than " +
+                                    std::to_string(kMaxCsvLineBytes) + " bytes (limit)");
       if (!line.empty() && line.back() == '\r') line.pop_back();
       if (line.empty()) continue;
       const std::vector<std::string> f = split(line, ',');
-      const std::string where = name + ":" + std::to_string(line_no);
       if (f.size() != columns)
         throw std::invalid_argument(where + ": expected " + std::to_string(columns) +
                                     " fields, got " + std::to_string(f.size()));
-      double speed = 0.0;
-      std::size_t used = 0;
-      try {
-        speed = std::stod(f[0], &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (f[0].empty() || used != f[0].size() || !std::isfinite(speed))
-        throw std::invalid_argument(where + ": speed '" + f[0] + "' is not a number");
-      rows.emplace_back(speed, line);
+      if (static_cast<int>(rows.size()) >= kMaxSpeeds)
+        throw std::invalid_argument(where + ": more than " + std::to_string(kMaxSpeeds) +
+                                    " rows (limit)");
+      rows.emplace_back(checkSweepRow(f, where), line);
       origin.push_back(where);
     }
   }
@@ -405,7 +462,7 @@ std::string mergeSweepCsvs(const std::vector<std::string>& texts,
   std::string out = std::string(kSweepCsvHeader) + "\n";
   for (std::size_t k = 0; k < idx.size(); ++k) {
     if (k > 0 && rows[idx[k]].first - rows[idx[k - 1]].first <= kDuplicateTol)
-      throw std::invalid_argument("speed " + formatDouble(rows[idx[k]].first) + " appears twice: " +
+      throw std::invalid_argument("speed " + formatShort(rows[idx[k]].first) + " appears twice: " +
                                   origin[idx[k - 1]] + " and " + origin[idx[k]]);
     out += rows[idx[k]].second + "\n";
   }

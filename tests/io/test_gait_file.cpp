@@ -88,8 +88,10 @@ std::string gaitWith(const std::map<int, std::string>& replaced = {}) {
 }
 
 // Loading `yaml` must throw a ConfigError for `key` at `line`, with the standard message.
-void requireError(const std::string& yaml, const std::string& key, int line) {
-  gaitopt::test::requireConfigError(loadGaitFile, scratch().write(yaml), key, line);
+void requireError(const std::string& yaml, const std::string& key, int line,
+                  const std::string& problem = "") {
+  gaitopt::test::requireConfigError(loadGaitFile, scratch().write(yaml), key, line,
+                                    problem);
 }
 
 bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
@@ -285,6 +287,15 @@ TEST_CASE("bad gait files name the file, the key and its line", "[gait_io]") {
     requireError(gaitWith({{22, "  ds_alphadot_max: 0"}}), "options.ds_alphadot_max", 22);
     requireError(gaitWith({{22, "  angle_margin: -1e-3"}}), "options.angle_margin", 22);
     requireError(gaitWith({{22, "  friction_smoothing: 0"}}), "options.friction_smoothing", 22);
+    // Documented upper bounds: 1e307 passed "> 0" and made every step undefined.
+    requireError(gaitWith({{22, "  friction_coefficient: 1e307"}}), "options.friction_coefficient",
+                 22, "must be in (0, 10], got 1e307");
+    requireError(gaitWith({{22, "  clearance_height: 5"}}), "options.clearance_height", 22,
+                 "[0, 1] m");
+    requireError(gaitWith({{22, "  target_speed: 11"}}), "options.target_speed", 22, "m/s");
+    // Booleans only true/false.
+    requireError(gaitWith({{23, "  dry_friction: yes"}}), "options.dry_friction", 23,
+                 "expected true or false, got 'yes'");
     requireError(gaitWith({{22, "  target_speed: -0.3"}}), "options.target_speed", 22);
   }
   SECTION("missing robot file: reported at the gait file's robot key") {

@@ -75,8 +75,10 @@ std::string robotWith(const std::map<int, std::string>& replaced = {}) {
 }
 
 // Loading `yaml` must throw a ConfigError for `key` at `line`, with the standard message.
-void requireError(const std::string& yaml, const std::string& key, int line) {
-  gaitopt::test::requireConfigError(loadRobot, scratch().write(yaml), key, line);
+void requireError(const std::string& yaml, const std::string& key, int line,
+                  const std::string& problem = "") {
+  gaitopt::test::requireConfigError(loadRobot, scratch().write(yaml), key, line,
+                                    problem);
 }
 
 }  // namespace
@@ -355,12 +357,35 @@ TEST_CASE("support bar: one form only, physical values", "[robot_yaml]") {
   CHECK(r.bar.equivalent_mass == Approx(7.5).margin(1e-12));
 }
 
+TEST_CASE("robot numbers outside their documented physical ranges", "[robot_yaml][reliability]") {
+  // Echoed as written, with the range and unit.
+  requireError(robotWith({{6, "  m1: 1e300"}}), "masses.m1", 6,
+               "must be in [0.001, 1000] kg, got 1e300");
+  requireError(robotWith({{6, "  m1: 4.9e-324"}}), "masses.m1", 6, "got 4.9e-324");  // denormal
+  requireError(robotWith({{3, "lengths: {l1: 0.4, l2: 0.4, l4: 0.4, l5: 1e9}"}}), "lengths.l5", 3,
+               "[0.001, 10] m");
+  requireError(robotWith({{11, "inertias: {I1: 0.1, I2: 0.25, I3: 2e9, I4: 0.25, I5: 0.1}"}}),
+               "inertias.I3", 11, "kg m^2");
+  requireError(robotWith({{14, "  gear_ratio: 0.5"}}), "motors.gear_ratio", 14, "[1, 10000]");
+  requireError(robotWith({{19, "  coulomb: [5.48, 16.5, 1e6, 5.48]"}}), "friction.coulomb[2]",
+               19, "got 1e6");
+  requireError(robotWith({{26, "gravity: 0.2e3"}}), "gravity", 26, "got 0.2e3");
+  // The centre of mass lies within its link: s1 from the knee along l1, s3 along the trunk.
+  requireError(robotWith({{4, "com_offsets: {s1: 0.5, s2: 0.163, s3: 0.20025, s4: 0.163, "
+                              "s5: 0.127}"}}),
+               "com_offsets.s1", 4, "within its link: 0.5 m > l1 = 0.4 m");
+  requireError(robotWith({{29, "trunk_length: 0.1"}}), "com_offsets.s3", 4, "trunk_length");
+}
+
 TEST_CASE("YamlMap: strings, booleans, optional values", "[robot_yaml]") {
-  const YAML::Node node = YAML::Load("a: text\nb: true\nc: 'yes'\nd: 2\n");
+  const YAML::Node node = YAML::Load("a: text\nb: true\nc: 'yes'\nd: 2\ne1: yes\ne2: On\n");
   const gaitopt::YamlMap m(node, "mem.yaml", "top");
   CHECK(m.string("a") == "text");
   CHECK(m.boolean("b"));
   CHECK_THROWS_WITH(m.boolean("c"), Contains("mem.yaml:3: key 'top.c'"));
+  // Only true/false, not the YAML 1.1 spellings.
+  CHECK_THROWS_WITH(m.boolean("e1"), Contains("mem.yaml:5: key 'top.e1': expected true or false"));
+  CHECK_THROWS_WITH(m.boolean("e2"), Contains("got 'On'"));
   CHECK(m.optionalNumber("d") == 2.0);
   CHECK_FALSE(m.optionalNumber("e").has_value());
   CHECK_FALSE(m.optionalMap("f").has_value());

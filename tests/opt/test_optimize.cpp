@@ -64,7 +64,7 @@ std::vector<std::string> validConfig() {
       "parameterisation: miossec",            // 7
       "initial_guess: default",               // 8
       "solver:",                              // 9
-      "  backend: nlopt_slsqp",               // 10
+      "  backend: ipopt",                     // 10
       "  hierarchy: staged",                  // 11
       "  max_iter: 500",                      // 12
       "  tol: 1.0e-8",                        // 13
@@ -265,7 +265,7 @@ TEST_CASE("optimize: configuration keys, defaults and pass-through Ipopt options
   const std::string gait = sourcePath("configs/gait/default_step.yaml");
   const OptimizeConfig other = gaitopt::loadOptimizeConfig(scratch().write(configWith(
       {{5, "criterion: W"}, {8, "initial_guess: " + gait}, {10, "  backend: nlopt_cobyla"},
-       {11, "  hierarchy: direct"}})));
+       {11, "  hierarchy: direct"}, {16, "#"}, {17, "#"}, {18, "#"}})));
   CHECK(other.criterion == gaitopt::Criterion::Work);
   CHECK(other.solver.backend == gaitopt::Backend::NloptCobyla);
   CHECK(other.solver.hierarchy == gaitopt::HierarchyStrategy::Direct);
@@ -302,6 +302,9 @@ TEST_CASE("optimize: bad configurations name the file, the key and its line", "[
                7, "must be odd");
   requireError(configWith({{15, "  print_every: -1"}}), "solver.print_every", 15,
                "integer >= 0");
+  // Ipopt options with an NLopt backend would be silently ignored.
+  requireError(configWith({{10, "  backend: nlopt_slsqp"}}), "solver.ipopt", 16,
+               "used only with backend: ipopt");
   requireError(configWith({{16, "  ipopt: {no_such_option: 1}"}, {17, "#"}, {18, "#"}}),
                "solver.ipopt.no_such_option", 16, "Ipopt rejects");
   requireError(configWith({{18, "    no_such_option: 1"}}), "solver.ipopt.no_such_option", 18,
@@ -586,7 +589,9 @@ TEST_CASE("optimize: the CLI rejects bad input without writing anything", "[opti
 
 TEST_CASE("optimize: the CLI reports an infeasible request with exit code 3 and its outputs",
           "[optimize]") {
-  const std::string config = scratch().write(configWith({{6, "speed: 3.0"}}));
+  const std::string config = scratch().write(
+      configWith({{6, "speed: 3.0"}, {10, "  backend: nlopt_slsqp"}, {16, "#"}, {17, "#"},
+                  {18, "#"}}));
   const std::string out = scratch().fresh("out_infeasible");
   const CliRun run = runCli("optimize --config " + quoted(config) + " --out " + quoted(out) +
                             " --quiet");
@@ -604,20 +609,22 @@ TEST_CASE("optimize: the CLI reports an infeasible request with exit code 3 and 
 }
 
 TEST_CASE("optimize: random starts are reproducible from their seed", "[optimize]") {
+  // Light form (sanitizer run): one start instead of three.
+  const std::string starts = gaitopt::test::lightTests() ? "1" : "3";
   std::string blocks[2];
   for (std::string& block : blocks) {
     const std::string out = scratch().fresh("out_random");
     const CliRun run = runCli("optimize --config " + quoted(kDefaultConfig) + " --out " +
-                              quoted(out) + " --random-starts 3 --seed 7 --quiet");
+                              quoted(out) + " --random-starts " + starts + " --seed 7 --quiet");
     INFO(run.out << run.err);
     REQUIRE((run.exit_code == 0 || run.exit_code == 3));
     CHECK_THAT(run.out, Contains("converged "));
     const std::string summary = readFile(out + "/summary.json");
     block = jsonObject(summary, "random_starts");
     REQUIRE_FALSE(block.empty());
-    CHECK_THAT(block, Contains("\"count\": 3"));
+    CHECK_THAT(block, Contains("\"count\": " + starts));
     CHECK_THAT(block, Contains("\"seed\": 7"));
-    CHECK_THAT(block, Contains("\"start\": 3"));
+    CHECK_THAT(block, Contains("\"start\": " + starts));
   }
   CHECK(withoutWallTimes(blocks[0]) == withoutWallTimes(blocks[1]));
 }

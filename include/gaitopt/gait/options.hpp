@@ -9,6 +9,11 @@ enum class DsDistribution {
   Energy,  // pointwise min electrical power (3.61), (3.71)–(3.75)
 };
 
+// Highest walking speed accepted anywhere (options.target_speed, the config's speed, --speeds,
+// sweep.csv) [m/s]: RABBIT-class robots walk at about 1 m/s; 10 m/s leaves room for any biped
+// of this kind while refusing values whose arithmetic would overflow.
+constexpr double kMaxWalkingSpeed = 10.0;
+
 struct GaitOptions {
   Parameterisation parameterisation;  // thesis: 17 parameters
   double friction_coefficient = 0.8;  // ground f (gap #1: Ch. 2 calls 1 a rarely exceeded value)

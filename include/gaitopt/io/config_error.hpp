@@ -2,14 +2,21 @@
 // Error in a user-supplied configuration file (robot, gait or optimiser YAML). It names the
 // file, the offending key as a dotted path and its line, so the user can fix the file without
 // reading the code; the CLI turns it into exit code 2.
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
 namespace gaitopt {
 
+// `text` safe to print on a terminal: control characters, DEL and bytes that are not valid
+// UTF-8 become \xNN escapes, and text longer than `max_bytes` is cut with "...". Every message
+// that echoes user input goes through it (messages name the file, key and value as written).
+std::string printable(const std::string& text, std::size_t max_bytes = 200);
+
 class ConfigError : public std::runtime_error {
  public:
-  // Message: "<file>:<line>: key '<key>': <problem>". The ":<line>" part is left out when
+  // Message: "<file>:<line>: key '<key>': <problem>", file and key made printable. The
+  // ":<line>" part is left out when
   // line is 0 (unknown), and the "key '<key>': " part when key is empty (file-level errors
   // such as an unreadable or unparsable file).
   ConfigError(std::string file, std::string key, int line, const std::string& problem);

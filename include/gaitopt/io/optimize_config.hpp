@@ -16,7 +16,7 @@
 //     tol: 1.0e-8                      # > 0
 //     constraint_exchange: true
 //     print_every: 1                   # integer >= 0 (0: no progress lines)
-//     ipopt: {key: value, ...}         # passed to Ipopt, checked at load time
+//     ipopt: {key: value, ...}         # backend ipopt only; checked against Ipopt at load time
 //
 // Reading is as strict as for robot and gait files: every problem is a ConfigError naming the
 // file, the dotted key and its line.
@@ -54,12 +54,18 @@ struct OptimizeConfig {
 // Throws ConfigError for an unreadable or malformed file, a missing `robot`, an unknown or
 // misspelt key at any depth, a value of the wrong type, an unknown criterion, backend,
 // hierarchy or parameterisation, speed <= 0, max_iter < 1 (or not an integer), tol <= 0,
-// print_every < 0, an Ipopt option that Ipopt rejects (reported at `solver.ipopt.<key>`),
+// print_every < 0, an Ipopt option that Ipopt rejects (reported at `solver.ipopt.<key>`), an
+// unavailable Ipopt linear_solver, an output_file that is not a plain file name,
+// option_file_name, Ipopt options with an NLopt backend,
 // `options.target_speed` (use `speed`), and a missing or unreadable robot or initial-guess
 // gait file (reported at the config's `robot` / `initial_guess` key; errors inside those
 // files name the files themselves). Only the parameters of an initial-guess gait file are
 // used (refined if coarser; a richer one is an error); its robot and options are ignored.
 OptimizeConfig loadOptimizeConfig(const std::string& path);
+
+// Points the Ipopt option output_file (a plain file name, checked at load) into `dir`, the
+// directory the run writes, so that a configuration cannot write anywhere else.
+void placeIpoptOutputFile(SolverSettings& solver, const std::string& dir);
 
 // The configured starting point: the gait file's parameters, or defaultInitialGuess(model,
 // config.speed) for `initial_guess: default`.

@@ -36,8 +36,9 @@ OptimizationOutputs optimizationOutputs(const GaitEvaluator& evaluator,
                                         const OptimizationResult& result, const std::string& dir,
                                         const std::function<void(JsonWriter&)>& extra = {});
 
-// Creates `dir` if needed and writes the documents atomically; a trajectory.csv left by an
-// earlier run is removed when `outputs` has none.
+// Creates `dir` if needed and writes the documents, each atomically; `dir` is meant to be a
+// fresh directory (a StagedDirectory's, or a folder inside one), so that the three files
+// appear together when it is put in place.
 void writeOptimizationOutputs(const std::string& dir, const OptimizationOutputs& outputs);
 
 }  // namespace gaitopt

@@ -17,9 +17,20 @@
 
 namespace gaitopt {
 
-// Reads a YAML file. A missing, unreadable or unparsable file throws ConfigError with the
-// file name and, for a syntax error, the parser's line.
+// Resource limits of every YAML reader (README, "Reliability"): beyond them the file is refused
+// with a ConfigError instead of costing gigabytes or minutes.
+struct YamlLimits {
+  static constexpr std::size_t kMaxFileBytes = 1 << 20;  // 1 MiB
+  static constexpr std::size_t kMaxLineBytes = 4096;
+  static constexpr int kMaxNesting = 32;  // mappings/sequences inside each other
+};
+
+// Reads a YAML file. A missing, unreadable or unparsable file, one over the limits, one with
+// control characters (binary data), more than one document (`---`) or none throws ConfigError
+// with the file name and, where known, the line.
 YAML::Node loadYamlFile(const std::string& path);
+// The same checks on YAML `text` already in memory, `file` naming it in messages.
+YAML::Node parseYamlText(const std::string& text, const std::string& file);
 
 // View of a mapping node. Copies share the record of which keys were read, so a copy
 // returned by map() and the parent's rejectUnknownKeys() see the same bookkeeping.
@@ -42,7 +53,8 @@ class YamlMap {
   // Presence of `key` holding a mapping; does not count as reading the key.
   bool hasMapping(const std::string& key) const;
 
-  // Required values. Numbers must be plain (unquoted) finite scalars.
+  // Required values. Numbers must be plain (unquoted) finite scalars; booleans exactly
+  // `true` or `false` (not the YAML 1.1 spellings yes/no/on/off/y/n).
   double number(const std::string& key) const;
   std::string string(const std::string& key) const;
   bool boolean(const std::string& key) const;
@@ -52,6 +64,11 @@ class YamlMap {
   // Optional values: empty when the key is absent; a present key must be well formed.
   std::optional<double> optionalNumber(const std::string& key) const;
   std::optional<YamlMap> optionalMap(const std::string& key) const;
+
+  // The scalar text of `key` (or of element `index` of sequence `key`) as the user wrote it,
+  // printable; "" if absent or not a scalar. For messages that echo a value.
+  std::string text(const std::string& key) const;
+  std::string elementText(const std::string& key, std::size_t index) const;
 
   // Every entry of this mapping as (key, scalar text), in file order, for pass-through maps
   // whose keys are checked by someone else (e.g. Ipopt options); marks every key as read.
@@ -83,6 +100,27 @@ class YamlMap {
 
 // `value` as a stream writes it by default (six significant digits), for error messages.
 std::string showNumber(double value);
+
+// A documented physical range [min, max] of a number, each bound open or closed, with its
+// unit; robot, gait and optimiser readers share these checks so every number is both finite
+// and physically meaningful (README, "Reliability").
+struct Range {
+  double min;
+  double max;
+  bool min_open = false;  // (min, ...] instead of [min, ...]
+  const char* unit = "";
+  bool contains(double v) const { return (min_open ? v > min : v >= min) && v <= max; }
+  std::string describe() const;  // e.g. "(0, 1000] kg"
+};
+
+// The number at `key`, which must lie in `range`; otherwise a ConfigError at the key that
+// quotes the value as written: "must be in (0, 1000] kg, got 1e300".
+double numberIn(const YamlMap& m, const std::string& key, const Range& range);
+// Absent: `fallback`; present: as numberIn.
+double numberInOr(const YamlMap& m, const std::string& key, const Range& range, double fallback);
+// A sequence of `size` numbers, each in `range` (errors at the element).
+std::vector<double> numbersIn(const YamlMap& m, const std::string& key, std::size_t size,
+                              const Range& range);
 
 // The index of the string value of `key` among `count` `choices`; any other value is a
 // ConfigError at `key` that lists the choices. The key must be present.

@@ -36,6 +36,9 @@ struct NlpSolution {
 NlpSolution solveWithIpopt(NlpProblem& problem, const NlpSettings& settings);
 // The first option key Ipopt rejects (unknown key or bad value), or "" if all are accepted.
 std::string rejectedIpoptOption(const std::vector<std::pair<std::string, std::string>>& options);
+// Whether Ipopt can solve with linear solver `name` (e.g. "ma57" needs the HSL library at run
+// time): a one-variable problem is solved with it.
+bool ipoptLinearSolverAvailable(const std::string& name);
 
 enum class NloptMethod { Slsqp, Cobyla };
 NlpSolution solveWithNlopt(NlpProblem& problem, const NlpSettings& settings, NloptMethod method);

@@ -12,6 +12,7 @@
 // defaultInitialGuess. With jobs > 1 the list is cut into `jobs` contiguous chunks, each an
 // independent chain (started at its speed closest to the free-speed optimum) on its own thread;
 // each chunk's results are exactly those of a one-chain run on that chunk alone (e.g. a shard).
+#include <cstddef>
 #include <functional>
 #include <ostream>
 #include <string>
@@ -86,6 +87,7 @@ std::vector<SweepPoint> sweepSpeeds(const GaitEvaluator& evaluator, const Optimi
                                     const SweepSettings& settings, const ProgressFn& progress = {});
 
 // sweep.csv
+constexpr std::size_t kMaxSweepCsvBytes = std::size_t{4} << 20;  // read limit per file (4 MiB)
 extern const char* const kSweepCsvHeader;  // speed,status,C_Gamma,...,wall_time_s (no newline)
 // One row (no newline): full precision, empty fields where undefined; iterations and wall time
 // are totals over the speed's attempts.
@@ -93,8 +95,12 @@ std::string sweepCsvRow(const GaitEvaluator& evaluator, const SweepPoint& point)
 std::string sweepCsv(const GaitEvaluator& evaluator, const std::vector<SweepPoint>& points);
 
 // Concatenation of several sweep.csv texts (`names` label them in messages), rows sorted by
-// speed. Throws std::invalid_argument if a header differs from kSweepCsvHeader, a row is
-// malformed or a speed appears twice (within 1e-9 m/s).
+// speed. Strict: every column typed and range-checked (speed in (0, 10] m/s, a known status,
+// numbers or empty fields, durations >= 0, an integer iteration count); CRLF line ends, blank
+// lines and a missing final newline are accepted. Throws std::invalid_argument naming
+// file:line and the column if a header differs from kSweepCsvHeader, a row is malformed, a
+// speed appears twice (within 1e-9 m/s), or a limit is exceeded (kMaxSweepCsvBytes per text,
+// 4096 bytes per line, 10000 rows in all).
 std::string mergeSweepCsvs(const std::vector<std::string>& texts,
                            const std::vector<std::string>& names);
 
