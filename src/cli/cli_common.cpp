@@ -42,8 +42,11 @@ void requireDirectoryOrAbsent(const std::string& out) {
 }
 
 void requireFileOutput(const std::string& out) {
+  std::error_code ec;
   if (std::filesystem::is_directory(out, ec))
     throw CLI::ValidationError("--out", "'" + out + "' is a directory, a file is expected");
+}
+
 std::function<bool(const std::string&)> ourOutputs(const SolverSettings* solver) {
   std::string ipopt_output;
   if (solver) {

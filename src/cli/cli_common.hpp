@@ -24,6 +24,7 @@ void requireDirectoryOrAbsent(const std::string& out);
 
 // Bad input (CLI::ValidationError at --out) when the output file `out` is a directory.
 void requireFileOutput(const std::string& out);
+
 // Whether `name` is an entry gaitopt writes into an output directory (summary.json,
 // gait.yaml, trajectory.csv, sweep.csv, v<speed> folders, or the Ipopt output_file of
 // `solver`); StagedDirectory refuses an existing --out holding anything else.
