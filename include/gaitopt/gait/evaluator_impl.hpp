@@ -34,12 +34,13 @@ template <class S> struct EvalContext {
     out.g[k] = value;
     out.state[k] = state;
   }
-  // Lowest level ≤ max_level with a violated computed entry, or −1.
+  // Lowest level ≤ max_level with a computed entry violated beyond the feasibility tolerance,
+  // or −1 (the margins of levels 0–1 exceed that tolerance, so their IK stays computable).
   int lowestViolated(int max_level) const {
     int lowest = -1;
     for (int k = 0; k < layout.size(); ++k)
       if (out.state[k] != ConstraintState::NotComputed && layout.levelOf(k) <= max_level &&
-          valueOf(out.g[k]) > 0.0 && (lowest < 0 || layout.levelOf(k) < lowest))
+          layout.violates(k, valueOf(out.g[k])) && (lowest < 0 || layout.levelOf(k) < lowest))
         lowest = layout.levelOf(k);
     return lowest;
   }
@@ -207,6 +208,24 @@ void zeroDynamicsRates(const SsPathPoint<S>& pt, const S& phi, const GaitMotion<
   alphaddot = -(pt.G(0) + pt.tau_c(0) * alphadot * alphadot) / f;
 }
 
+// Extra SS constraint points (options.ss_extra_points, Chebyshev coordinates): path terms and
+// the level-2 constraint there, appended to the node points.
+template <class S>
+void ssExtraPoints(EvalContext<S>& c, std::vector<SsPathPoint<S>>& pts, ConstraintState st) {
+  const GaitMotion<S>& mo = c.out.motion;
+  for (double s : c.options.ss_extra_points) {
+    pts.push_back(ssPathPoint(c.model, mo, chebyshevToInterval(s, mo.alpha_iSS, mo.alpha_fSS)));
+    c.set(kFPositive, static_cast<int>(pts.size()) - 1, c.options.f_min - pts.back().tau_a(0), st);
+  }
+}
+
+// Φ at SS point k: a node value, or its spectral interpolant at an extra point.
+template <class S> S ssPhiAt(const EvalContext<S>& c, int k) {
+  const int n = c.ss_grid.size();
+  if (k < n) return c.out.motion.ss_phi(k);
+  return c.ss_grid.interpolate(c.out.motion.ss_phi, c.options.ss_extra_points[k - n]);
+}
+
 template <class S> void zeroDynamicsStage(EvalContext<S>& c, std::vector<SsPathPoint<S>>& pts) {
   using std::sqrt;
   const GaitOptions& o = c.options;
@@ -224,16 +243,17 @@ template <class S> void zeroDynamicsStage(EvalContext<S>& c, std::vector<SsPathP
   }
   mo.ss_phi = cumulativeOverInterval(c.ss_grid, dphi, mo.alpha_iSS, mo.alpha_fSS);
   mo.f_iSS = saturatedF(S(pts[0].tau_a(0)), o.f_min);
+  ssExtraPoints(c, pts, st);
 
   const S a_i = c.p(kAlphadotISS);
   const ConstraintState st3 = c.stateAbove(2);
   c.set(kAlphadotNegative, 0, a_i + o.alphadot_margin, st3);
   int worst = 0;
-  for (int k = 0; k < n; ++k) {
+  for (int k = 0; k < static_cast<int>(pts.size()); ++k) {
     // (3.55) divided by f_i²: a margin ε² on σ²/f_i².
     c.set(kNoFallBack, k,
-          -(mo.ss_phi(k) / squared(mo.f_iSS) + a_i * a_i) + squared(o.alphadot_margin), st3);
-    if (valueOf(mo.ss_phi(k)) < valueOf(mo.ss_phi(worst))) worst = k;
+          -(ssPhiAt(c, k) / squared(mo.f_iSS) + a_i * a_i) + squared(o.alphadot_margin), st3);
+    if (k < n && valueOf(mo.ss_phi(k)) < valueOf(mo.ss_phi(worst))) worst = k;
   }
   // (3.56), with the corrected sign of ε (α̇ < 0).
   const S phi_min = mo.ss_phi(worst);
@@ -298,14 +318,20 @@ template <class S> DsPrescribed<S> dsPrescribed(const GaitMotion<S>& mo, const S
   return r;
 }
 
+template <class S> S dsExtraTime(const EvalContext<S>& c, int i) {
+  return chebyshevToInterval(c.options.ds_extra_points[i], S(0.0), c.out.motion.T_DS);
+}
+
 template <class S> bool dsReachStage(EvalContext<S>& c) {
   GaitMotion<S>& mo = c.out.motion;
   const auto ts = mappedNodes(c.ds_grid, S(0.0), mo.T_DS);
   const double L = c.model.robot.l4 + c.model.robot.l5;
   const ConstraintState st = c.stateAbove(3);
   bool reachable = true;  // the DS inverse kinematics exists at every node
-  for (int k = 0; k < c.ds_grid.size(); ++k) {
-    const DsPrescribed<S> pr = dsPrescribed(mo, S(ts(k)));
+  const int n = c.ds_grid.size();
+  for (int k = 0; k < n + static_cast<int>(c.options.ds_extra_points.size()); ++k) {
+    const S t = k < n ? S(ts(k)) : dsExtraTime(c, k - n);
+    const DsPrescribed<S> pr = dsPrescribed(mo, t);
     const S rho2 = rearFootFromHip(c.model, pr.alpha, pr.d1, mo.d).squaredNorm();
     c.set(kDsReachMax, k, rho2 - L * L + c.options.reach_margin, st);  // (3.41)
     c.set(kDsReachMin, k, c.options.reach_margin - rho2, st);
@@ -415,6 +441,27 @@ void setContactConstraints(EvalContext<S>& c, int cone_group, int normal_group, 
   c.set(cone_group, 2 * (feet * k + foot), -f * R(1) - R(0), st);  // (3.48)
   c.set(cone_group, 2 * (feet * k + foot) + 1, -f * R(1) + R(0), st);
   c.set(normal_group, feet * k + foot, c.options.min_normal_force - R(1), st);
+}
+
+// Level-5 constraints at SS point k; the clearance (3.49) only on the open interval (gap #16),
+// where it has entry `clearance_entry` (none at the phase ends).
+template <class S>
+void setSsPointConstraints(EvalContext<S>& c, int k, int clearance_entry, const PhaseSample<S>& s,
+                           ConstraintState st) {
+  setPhaseConstraints(c, kTorqueSS, kJointLimitsSS, k, s, st);
+  setContactConstraints(c, kFrictionConeSS, kNormalForceSS, 0, 1, k, s.R1, st);
+  if (k == 0 || k == c.ss_grid.size() - 1) return;
+  const S x = s.foot2(0) / c.out.motion.d;
+  c.set(kClearance, clearance_entry,
+        -(s.foot2(1) - c.options.clearance_height * (1.0 - x * x)), st);
+}
+
+template <class S>
+void setDsPointConstraints(EvalContext<S>& c, int k, const PhaseSample<S>& s, ConstraintState st) {
+  setPhaseConstraints(c, kTorqueDS, kJointLimitsDS, k, s, st);
+  setContactConstraints(c, kFrictionConeDS, kNormalForceDS, 0, 2, k, s.R1, st);
+  setContactConstraints(c, kFrictionConeDS, kNormalForceDS, 1, 2, k, s.R2, st);
+  c.set(kDsMonotone, k, s.qd(0) - c.options.ds_alphadot_max, st);  // (3.43)
 }
 
 // Integrands of the criteria at one sample: Γ*ᵀΓ*, max(0, electrical power), Σ|Γ*_j ω_j|, Γ*ᵀω.
@@ -547,14 +594,14 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
   for (int k = 0; k < nss; ++k) {
     const S& ad = mo.ss_alphadot(k);
     const PhaseSample<S> s = ssSample(c.model, pts[k], ad, mo.ss_alphaddot(k));
-    setPhaseConstraints(c, kTorqueSS, kJointLimitsSS, k, s, st);
-    setContactConstraints(c, kFrictionConeSS, kNormalForceSS, 0, 1, k, s.R1, st);
-    if (k > 0 && k < nss - 1) {  // (3.49) on the open interval (gap #16)
-      const S x = s.foot2(0) / mo.d;
-      c.set(kClearance, k - 1, -(s.foot2(1) - o.clearance_height * (1.0 - x * x)), st);
-    }
+    setSsPointConstraints(c, k, k - 1, s, st);
     const std::array<S, 4> in = criteriaIntegrands(c.model, s);
     for (int i = 0; i < 4; ++i) ss_int[i](k) = in[i] / ad;  // dt = dα / α̇ (3.29)
+  }
+  for (int k = nss; k < static_cast<int>(pts.size()); ++k) {  // extra points: constraints only
+    S ad, add;
+    zeroDynamicsRates(pts[k], ssPhiAt(c, k), mo, o.f_min, ad, add);
+    setSsPointConstraints(c, k, k - 2, ssSample(c.model, pts[k], ad, add), st);
   }
   const auto ts = mappedNodes(c.ds_grid, S(0.0), mo.T_DS);
   std::vector<std::array<double, 6>> switching(nds);
@@ -563,13 +610,12 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
     const PhaseSample<S> s = dsSample(c.model, o, mo, S(ts(k)));
     for (int i = 0; i < 6; ++i) switching[k][i] = valueOf(s.switching[i]);
     branch[k] = s.branch;
-    setPhaseConstraints(c, kTorqueDS, kJointLimitsDS, k, s, st);
-    setContactConstraints(c, kFrictionConeDS, kNormalForceDS, 0, 2, k, s.R1, st);
-    setContactConstraints(c, kFrictionConeDS, kNormalForceDS, 1, 2, k, s.R2, st);
-    c.set(kDsMonotone, k, s.qd(0) - o.ds_alphadot_max, st);  // (3.43)
+    setDsPointConstraints(c, k, s, st);
     const std::array<S, 4> in = criteriaIntegrands(c.model, s);
     for (int i = 0; i < 4; ++i) ds_int[i](k) = in[i];
   }
+  for (int i = 0; i < static_cast<int>(o.ds_extra_points.size()); ++i)
+    setDsPointConstraints(c, nds + i, dsSample(c.model, o, mo, dsExtraTime(c, i)), st);
   c.out.ds_pieces = c.known_pieces ? *c.known_pieces : dsPieces(c, ts, branch, switching);
   const std::array<S, 4> ds_total = c.out.ds_pieces.switch_times.empty()
                                         ? integrateEach(c.ds_grid, ds_int, S(0.0), mo.T_DS)
