@@ -102,6 +102,7 @@ BetweenNodesCheck checkBetweenNodes(const GaitEvaluator& ev, const GaitParameter
   o.ds_nodes *= kBetweenNodesRefinement;
   o.ss_extra_points.clear();
   o.ds_extra_points.clear();
+  o.split_criteria_kinks = false;  // constraints only
   const GaitEvaluator fine(ev.model().robot, o, ev.model().options);
   const GaitEvaluation<double> e = fine.evaluate(p);
   BetweenNodesCheck r;
@@ -124,6 +125,7 @@ BetweenNodesCheck checkBetweenNodes(const GaitEvaluator& ev, const GaitParameter
     }
   }
   GaitOptions probe_options = ev.options();
+  probe_options.split_criteria_kinks = false;
   probe_options.ss_extra_points.clear();
   probe_options.ds_extra_points.clear();
   for (const ConstraintGroup& group : layout.groups()) {

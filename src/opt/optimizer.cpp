@@ -303,6 +303,8 @@ OptimizationResult optimizeGait(const GaitEvaluator& ev, const OptimizationReque
   GaitParameters p = gaitVariables(ev.model(), req.initial, ev.options().parameterisation).initial;
   NlpStatus status = NlpStatus::Failed;
   GaitOptions options = ev.options();
+  // C_Γ needs no kink splitting (its integrand is smooth): 10× cheaper evaluations.
+  options.split_criteria_kinks = req.criterion != Criterion::Torque;
   for (int round = 0; round <= kMaxBetweenNodesRounds; ++round) {
     // Each round solves with the constraint points found between nodes so far.
     const GaitEvaluator work(ev.model().robot, options, ev.model().options);

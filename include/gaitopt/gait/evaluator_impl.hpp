@@ -582,6 +582,118 @@ std::array<S, 4> integrateDsPiecewise(EvalContext<S>& c, const DsPieces& pieces)
   return total;
 }
 
+// ---------------------------------------------------------------------------------------------
+// W and C_E at spectral accuracy. Their integrands Σ|Γ*_j ω_j| (3.147) and max(0, P) (3.32)
+// have kinks where a Γ*_j ω_j or the electrical power P vanishes; the quadrature is split there,
+// each piece integrated with the signs fixed, and each split point differentiated by the
+// implicit-function theorem (as the DS branch switches).
+
+constexpr int kKinkScan = 8;
+
+// The kink functions at a sample: Γ*_j ω_j (j = 0..3) and P.
+template <class S> std::array<S, 5> kinkFunctions(const Model& m, const PhaseSample<S>& s) {
+  std::array<S, 5> k;
+  for (int j = 0; j < 4; ++j) k[j] = s.gamma_star(j) * s.omega(j);
+  k[4] = s.gamma_star.dot(s.omega) + jouleCoefficient(m) * s.gamma_star.squaredNorm();
+  return k;
+}
+
+// ∫_a^b of the W and C_E integrands; sample(u) gives the kink functions at u and the weight
+// dt/du. Roots are located on the values (so the double and AD passes find the same ones).
+template <class S, class Sample>
+std::array<S, 2> integrateKinked(const ChebyshevGrid& grid, const S& a, const S& b,
+                                 const Sample& sample) {
+  const auto fn = [&sample](double u, int i) { return valueOf(sample(S(u)).first[i]); };
+  const auto us = mappedNodes(grid, a, b);
+  std::vector<std::array<double, 5>> node(grid.size());
+  for (int k = 0; k < grid.size(); ++k)
+    for (int i = 0; i < 5; ++i) node[k][i] = fn(valueOf(us(k)), i);
+  // Sign changes of each function's spectral interpolant, sampled kKinkScan times per node
+  // interval (a lobe between two nodes of equal sign is found too), then located on the function.
+  std::vector<std::pair<double, int>> roots;
+  Eigen::VectorXd values(grid.size());
+  for (int i = 0; i < 5; ++i) {
+    for (int k = 0; k < grid.size(); ++k) values(k) = node[k][i];
+    const auto f = [&fn, i](double u) { return fn(u, i); };
+    for (int k = 0; k + 1 < grid.size(); ++k) {
+      const double s0 = grid.nodes()[k], s1 = grid.nodes()[k + 1];
+      double lo = s0, f_lo = node[k][i];
+      for (int j = 1; j <= kKinkScan; ++j) {
+        const double hi = j == kKinkScan ? s1 : s0 + (s1 - s0) * j / kKinkScan;
+        const double f_hi = j == kKinkScan ? node[k + 1][i] : grid.interpolate(values, hi);
+        if ((f_lo < 0.0) != (f_hi < 0.0)) {
+          const double u_lo = valueOf(chebyshevToInterval(lo, a, b));
+          const double u_hi = valueOf(chebyshevToInterval(hi, a, b));
+          const double g_lo = f(u_lo), g_hi = f(u_hi);
+          if ((g_lo < 0.0) != (g_hi < 0.0)) roots.push_back({switchTime(f, u_lo, g_lo, u_hi, g_hi), i});
+        }
+        lo = hi;
+        f_lo = f_hi;
+      }
+    }
+  }
+  const bool increasing = valueOf(a) < valueOf(b);
+  std::sort(roots.begin(), roots.end(), [increasing](const auto& x, const auto& y) {
+    return increasing ? x.first < y.first : x.first > y.first;
+  });
+  std::vector<S> ends{a};
+  const double h = 1e-7 * std::abs(valueOf(b) - valueOf(a));
+  for (const auto& [u, i] : roots) {
+    const double rate = (fn(u + h, i) - fn(u - h, i)) / (2.0 * h);
+    ends.push_back(rate != 0.0 && std::isfinite(rate) ? S(S(u) - sample(S(u)).first[i] / rate)
+                                                      : S(u));
+  }
+  ends.push_back(b);
+  std::array<S, 2> total{S(0.0), S(0.0)};
+  Eigen::Matrix<S, Eigen::Dynamic, 1> w(grid.size()), e(grid.size());
+  for (std::size_t piece = 0; piece + 1 < ends.size(); ++piece) {
+    std::array<double, 5> sign;
+    const double mid = 0.5 * (valueOf(ends[piece]) + valueOf(ends[piece + 1]));
+    for (int i = 0; i < 5; ++i) sign[i] = fn(mid, i) < 0.0 ? -1.0 : 1.0;
+    const auto nodes = mappedNodes(grid, ends[piece], ends[piece + 1]);
+    for (int k = 0; k < grid.size(); ++k) {
+      const auto [kink, weight] = sample(S(nodes(k)));
+      S abs_power(0.0);
+      for (int j = 0; j < 4; ++j) abs_power += sign[j] * kink[j];
+      w(k) = abs_power * weight;
+      e(k) = sign[4] > 0.0 ? S(kink[4] * weight) : S(0.0);
+    }
+    total[0] += integrateOverInterval(grid, w, ends[piece], ends[piece + 1]);
+    total[1] += integrateOverInterval(grid, e, ends[piece], ends[piece + 1]);
+  }
+  return total;
+}
+
+// W and C_E per phase, split at their kinks: the SS over α (weight 1/α̇, Φ by its spectral
+// interpolant), the DS over t within each force-distribution piece.
+template <class S> std::array<S, 2> kinkedCriteria(EvalContext<S>& c) {
+  const GaitMotion<S>& mo = c.out.motion;
+  const auto ss = [&c, &mo](const S& alpha) {
+    const SsPathPoint<S> pt = ssPathPoint(c.model, mo, alpha);
+    const S phi = c.ss_grid.interpolate(mo.ss_phi,
+                                        intervalToChebyshev(alpha, mo.alpha_iSS, mo.alpha_fSS));
+    S ad, add;
+    zeroDynamicsRates(pt, phi, mo, c.options.f_min, ad, add);
+    return std::make_pair(kinkFunctions(c.model, ssSample(c.model, pt, ad, add)), S(1.0 / ad));
+  };
+  std::array<S, 2> total = integrateKinked(c.ss_grid, mo.alpha_iSS, mo.alpha_fSS, ss);
+  const DsPieces& pieces = c.out.ds_pieces;
+  const std::size_t n = pieces.switch_times.size();
+  for (std::size_t piece = 0; piece <= n; ++piece) {
+    const S a = piece == 0 ? S(0.0) : switchTimeWithDerivative(c, pieces, int(piece) - 1);
+    const S b = piece == n ? mo.T_DS : switchTimeWithDerivative(c, pieces, int(piece));
+    const int branch = n == 0 ? kBranchFree : pieces.branches[piece];
+    const auto ds = [&c, &mo, branch](const S& t) {
+      return std::make_pair(kinkFunctions(c.model, dsSample(c.model, c.options, mo, t, branch)),
+                            S(1.0));
+    };
+    const std::array<S, 2> part = integrateKinked(c.piece_grid, a, b, ds);
+    total[0] += part[0];
+    total[1] += part[1];
+  }
+  return total;
+}
+
 template <class S>
 void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
   GaitMotion<S>& mo = c.out.motion;
@@ -625,6 +737,11 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
     crit[i] = (integrateOverInterval(c.ss_grid, ss_int[i], mo.alpha_iSS, mo.alpha_fSS) +
                ds_total[i]) /
               mo.d;  // (3.28)
+  if (o.split_criteria_kinks) {
+    const std::array<S, 2> kinked = kinkedCriteria(c);
+    crit[2] = kinked[0] / mo.d;
+    crit[1] = kinked[1] / mo.d;
+  }
   c.out.C_Gamma = crit[0];
   c.out.C_E = crit[1];
   c.out.W = crit[2];

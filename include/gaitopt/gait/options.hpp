@@ -40,6 +40,9 @@ struct GaitOptions {
   // phase (SS: α from α_iSS at s = 1 to α_fSS; DS: t from 0 to T_DS). Set by the optimiser's
   // exchange method on continuous α and t (local maxima between nodes), never read from files.
   std::vector<double> ss_extra_points, ds_extra_points;
+  // W and C_E split at the kinks of their integrands (spectral accuracy, ~10× the evaluation
+  // cost); the optimiser turns it off when it minimises C_Γ and reports with it on.
+  bool split_criteria_kinks = true;
 };
 
 }  // namespace gaitopt
