@@ -22,6 +22,15 @@ DPI = 100
 SS_COLOUR, DS_COLOUR = "C0", "C1"
 
 
+def out_as_positional(argv):
+    """`SCRIPT INPUT --out PNG` (how `gaitopt plot` calls a script) as `SCRIPT INPUT PNG`, for
+    the scripts that also take the output as a second positional argument."""
+    if "--out" in argv and argv.index("--out") + 1 < len(argv):
+        k = argv.index("--out")
+        return argv[:k] + argv[k + 2:] + [argv[k + 1]]
+    return argv
+
+
 def fail(kind, message):
     sys.stderr.write(f"gaitopt plot {kind}: error: {message}\n")
     sys.exit(EXIT_BAD_INPUT)

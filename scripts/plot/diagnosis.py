@@ -17,6 +17,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from _common import out_as_positional  # noqa: E402
 
 UNITS = {"alpha_row": "N·m", "R1x": "N", "R1z": "N", "R2x": "N", "R2z": "N", "ds_foot2_z": "m"}
 
@@ -26,9 +27,7 @@ def number(text):
 
 
 def main(argv):
-    if "--out" in argv and argv.index("--out") + 1 < len(argv):  # `gaitopt plot diagnosis DIR --out PNG`
-        k = argv.index("--out")
-        argv = argv[:k] + argv[k + 2:] + [argv[k + 1]]
+    argv = out_as_positional(argv)
     if len(argv) not in (2, 3):
         sys.exit(__doc__)
     out_dir = argv[1]

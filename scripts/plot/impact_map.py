@@ -20,6 +20,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
+from _common import out_as_positional  # noqa: E402
 
 COLUMNS = ["theta_deg", "mu", "behaviour", "n_solutions", "status"]
 
@@ -97,11 +98,7 @@ def main(argv):
             fail("--title needs a value")
         title = argv[k + 1]
         argv = argv[:k] + argv[k + 2:]
-    if "--out" in argv:
-        k = argv.index("--out")
-        if k + 1 >= len(argv):
-            fail("--out needs a value")
-        argv = argv[:k] + argv[k + 2:] + [argv[k + 1]]
+    argv = out_as_positional(argv)
     if len(argv) not in (2, 3):
         print(__doc__, file=sys.stderr)
         sys.exit(2)

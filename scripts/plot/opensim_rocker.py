@@ -17,6 +17,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from _common import out_as_positional  # noqa: E402
 
 
 def centred(values, weights):
@@ -24,10 +25,7 @@ def centred(values, weights):
 
 
 def main():
-    argv = sys.argv
-    if "--out" in argv and argv.index("--out") + 1 < len(argv):  # `gaitopt plot opensim_rocker REPORT --out PNG`
-        k = argv.index("--out")
-        argv = argv[:k] + argv[k + 2:] + [argv[k + 1]]
+    argv = out_as_positional(sys.argv)
     if len(argv) not in (2, 3):
         sys.exit(__doc__)
     report_path = argv[1]
