@@ -7,6 +7,7 @@
 #include <thread>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 
 namespace gaitopt {
@@ -15,11 +16,25 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-double chi2Survival1(double x) { return x <= 0.0 ? 1.0 : std::erfc(std::sqrt(0.5 * x)); }
+// P(χ²_k > x) for an integer k ≥ 1, by the closed forms of the regularised upper incomplete
+// gamma function at integer and half-integer order (term t_i = (x/2)^i / Γ(i + 1 or i + 3/2)).
+double chi2Survival(double x, int k = 1) {
+  if (x <= 0.0) return 1.0;
+  const double h = 0.5 * x;
+  const bool odd = k % 2 == 1;
+  double sum = odd ? std::erfc(std::sqrt(h)) : 0.0;
+  double term = odd ? std::exp(-h) * std::sqrt(h) / std::tgamma(1.5) : std::exp(-h);
+  double order = odd ? 1.5 : 1.0;  // Γ(order) divides the next term
+  for (int i = 0; i < k / 2; ++i, order += 1.0) {
+    sum += term;
+    term *= h / order;
+  }
+  return std::min(1.0, sum);
+}
 
 double chi2Quantile1(double tail) {  // x with P(χ²₁ > x) = tail, by bisection
   double lo = 0.0, hi = 200.0;
-  for (int i = 0; i < 100; ++i) (chi2Survival1(0.5 * (lo + hi)) > tail ? lo : hi) = 0.5 * (lo + hi);
+  for (int i = 0; i < 100; ++i) (chi2Survival(0.5 * (lo + hi)) > tail ? lo : hi) = 0.5 * (lo + hi);
   return 0.5 * (lo + hi);
 }
 
@@ -165,9 +180,11 @@ struct Context {
   const Problem& fit;
   const Problem& held;
   Evaluation evaluate(const std::vector<Effect>& effects) const {
+    return evaluate(withEffects(fit.nominal, effects));
+  }
+  Evaluation evaluate(const RobotParams& robot) const {
     const std::vector<char> all(fit.prepared.data.size(), 1);
-    const ResidualMatrix r =
-        residuals(fit.prepared, withEffects(fit.nominal, effects), fit.model_options, all);
+    const ResidualMatrix r = residuals(fit.prepared, robot, fit.model_options, all);
     return {entryValues(fit.entries, r), entryValues(held.entries, r)};
   }
 };
@@ -372,7 +389,7 @@ Scored score(const Context& ctx, Fit f, const std::array<double, kNumChannels>& 
   c.bic = n / s.phi * std::log(c.rss / n) + k * std::log(n / s.phi);
   const Eigen::MatrixXd cov = f.JtJ.ldlt().solve(Eigen::MatrixXd::Identity(f.JtJ.rows(), f.JtJ.cols()));
   c.stderr_ = std::sqrt(std::max(0.0, s.phi * s.s2 * cov(cov.rows() - 1, cov.cols() - 1)));
-  c.p_value = chi2Survival1((rss_base - c.rss) / (s.phi * s.s2));
+  c.p_value = chi2Survival((rss_base - c.rss) / (s.phi * s.s2));
   const Eigen::VectorXd h = weightedVector(ctx.held.entries, f.r.held, sigma);
   c.holdout_rms = std::sqrt(h.squaredNorm() / std::max<Eigen::Index>(1, h.size()));
   s.fit = std::move(f);
@@ -401,6 +418,137 @@ double bestChannelGain(const std::vector<Entry>& entries, const Eigen::VectorXd&
   for (int c = 0; c < kNumChannels; ++c)
     if (b[c] > 0.0) best = std::max(best, 100.0 * (1.0 - std::sqrt(a[c] / b[c])));
   return best;
+}
+
+// The channels carrying 90 % of the noise-normalised change from `before` to `after`
+// (largest first), and the reduction of their noise-normalised RMS [%].
+std::pair<std::vector<int>, double> effectChannels(const std::vector<Entry>& entries,
+                                                   const Eigen::VectorXd& before,
+                                                   const Eigen::VectorXd& after) {
+  std::array<double, kNumChannels> change{}, b{}, a{};
+  for (std::size_t e = 0; e < entries.size(); ++e) {
+    const int c = entries[e].channel;
+    change[c] += (before(e) - after(e)) * (before(e) - after(e));
+    b[c] += before(e) * before(e);
+    a[c] += after(e) * after(e);
+  }
+  std::vector<int> order(kNumChannels);
+  for (int c = 0; c < kNumChannels; ++c) order[c] = c;
+  std::sort(order.begin(), order.end(), [&](int x, int y) { return change[x] > change[y]; });
+  const double total = std::accumulate(change.begin(), change.end(), 0.0);
+  std::vector<int> channels;
+  double carried = 0.0, sb = 0.0, sa = 0.0;
+  for (int c : order) {
+    if (total <= 0.0 || carried >= 0.9 * total) break;
+    channels.push_back(c);
+    carried += change[c];
+    sb += b[c];
+    sa += a[c];
+  }
+  std::sort(channels.begin(), channels.end());
+  return {channels, sb > 0.0 ? 100.0 * (1.0 - std::sqrt(sa / sb)) : 0.0};
+}
+
+struct InertialStage {
+  InertialResult result;
+  RobotParams robot;
+  Eigen::MatrixXd Y;  // weighted regressor, fit entries
+  std::array<double, kNumChannels> sigma{};
+  Evaluation r;       // residuals of the fitted model
+};
+
+// The last-resort `inertial` candidate on top of the accepted model `base` (robot `rb`):
+// regressor columns by finite differences (exact: the residuals are affine in the
+// parameters), physically consistent weighted LS, reweighted once with the noise levels the
+// fit leaves, then the tests of the named candidates with r = rank degrees of freedom.
+InertialStage fitInertial(const Context& ctx, const RobotParams& rb, const Fit& base,
+                          std::array<double, kNumChannels> sigma, const DiagnoseOptions& o) {
+  const std::vector<Entry>& fe = ctx.fit.entries;
+  const std::vector<Entry>& he = ctx.held.entries;
+  std::vector<Evaluation> cols(kNumInertialParameters);
+  parallelFor(kNumInertialParameters, [&](int k) {
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(kNumInertialParameters);
+    d(k) = inertialScale(k);
+    const Evaluation r = ctx.evaluate(withInertialChange(rb, d));
+    cols[k] = {(r.fit - base.r.fit) / d(k), (r.held - base.r.held) / d(k)};
+  });
+  Eigen::MatrixXd Y(fe.size(), kNumInertialParameters);
+  ConsistentFit cf;
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) {
+      Eigen::VectorXd r = base.r.fit;
+      for (int k = 0; k < kNumInertialParameters; ++k) r += cols[k].fit * cf.delta(k);
+      sigma = channelSigma(ctx.fit, fitMatrix(ctx.fit.prepared.data.size(), fe, r));
+    }
+    double column_norm2 = 0.0;  // mean squared norm of the scaled columns
+    for (int k = 0; k < kNumInertialParameters; ++k) {
+      Y.col(k) = weightedVector(fe, cols[k].fit, sigma);
+      column_norm2 += (Y.col(k) * inertialScale(k)).squaredNorm() / kNumInertialParameters;
+    }
+    // λ: 1e-6 of the data's weight, enough to pin the directions the data do not excite.
+    cf = consistentLeastSquares(Y, weightedVector(fe, base.r.fit, sigma), rb, 1e-6 * column_norm2);
+  }
+  InertialStage st;
+  InertialResult& ir = st.result;
+  ir.tried = true;
+  ir.active = cf.active;
+  st.robot = withInertialChange(rb, cf.delta);
+  st.Y = Y;
+  st.sigma = sigma;
+  st.r = ctx.evaluate(st.robot);
+  const Evaluation& ev = st.r;
+  const Eigen::VectorXd rb_w = weightedVector(fe, base.r.fit, sigma);
+  const Eigen::VectorXd r_w = weightedVector(fe, ev.fit, sigma);
+  ir.base = baseParameters(Y);
+  const double n = static_cast<double>(fe.size());
+  const double phi = signalInflation(fe, rb_w, r_w);
+  const double s2 = r_w.squaredNorm() / std::max(1.0, n - base.effects.size() - ir.base.rank);
+  ir.p_value = chi2Survival((rb_w.squaredNorm() - r_w.squaredNorm()) / (phi * s2), ir.base.rank);
+  ir.nominal = inertialParameters(rb);
+  ir.fitted = inertialParameters(st.robot);
+  ir.base_nominal = ir.base.values(ir.nominal);
+  ir.base_fitted = ir.base.values(ir.fitted);
+  Eigen::MatrixXd Yb(fe.size(), ir.base.rank);
+  for (int i = 0; i < ir.base.rank; ++i) Yb.col(i) = Y.col(ir.base.independent[i]);
+  const Eigen::MatrixXd YtY = Yb.transpose() * Yb;
+  ir.base_stderr = (phi * s2 * YtY.ldlt().solve(Eigen::MatrixXd::Identity(ir.base.rank, ir.base.rank)))
+                       .diagonal().cwiseMax(0.0).cwiseSqrt();
+  const Eigen::VectorXd hb = weightedVector(he, base.r.held, sigma);
+  const Eigen::VectorXd h = weightedVector(he, ev.held, sigma);
+  ir.holdout_rms_before = std::sqrt(hb.squaredNorm() / std::max<Eigen::Index>(1, hb.size()));
+  ir.holdout_rms_after = std::sqrt(h.squaredNorm() / std::max<Eigen::Index>(1, h.size()));
+  ir.accepted = ir.p_value < o.significance && ir.holdout_rms_after < ir.holdout_rms_before &&
+                bestChannelGain(he, base.r.held, ev.held) >= o.min_channel_gain;
+  return st;
+}
+
+// Backward step once `inertial` is in the model: the accepted named effects (candidate
+// indices `accepted`, fitted values in `named`) that are no longer significant given the
+// others and the inertial parameters (linearised likelihood-ratio test at the final model).
+std::vector<int> supersededByInertial(const Context& ctx, const Linearisation& lin,
+                                      const std::vector<int>& accepted,
+                                      const std::vector<Effect>& named, const InertialStage& st,
+                                      double significance) {
+  const std::vector<Entry>& fe = ctx.fit.entries;
+  const Eigen::VectorXd rf = weightedVector(fe, st.r.fit, st.sigma);
+  const double n = static_cast<double>(fe.size());
+  const double s2 = rf.squaredNorm() / std::max(1.0, n - accepted.size() - st.result.base.rank);
+  const double phi = inflation(fe, rf);
+  std::vector<int> dropped;
+  for (std::size_t i = 0; i < accepted.size(); ++i) {
+    Eigen::MatrixXd A(fe.size(), st.Y.cols() + accepted.size() - 1);
+    A.leftCols(st.Y.cols()) = st.Y;
+    Eigen::Index col = st.Y.cols();
+    for (std::size_t j = 0; j < accepted.size(); ++j)
+      if (j != i) A.col(col++) = weightedVector(fe, lin.columns[accepted[j]].fit, st.sigma);
+    const Effect& e = named[i];
+    const double deviation = effectInfo(e.kind).factor ? e.value - 1.0 : e.value;
+    const Eigen::VectorXd b = rf - weightedVector(fe, lin.columns[accepted[i]].fit, st.sigma) * deviation;
+    const Eigen::VectorXd x = A.colPivHouseholderQr().solve(-b);
+    const double drss = (b + A * x).squaredNorm() - rf.squaredNorm();
+    if (chi2Survival(drss / (phi * s2)) >= significance) dropped.push_back(static_cast<int>(i));
+  }
+  return dropped;
 }
 
 constexpr int kRefined = 3;      // candidates refined per round (best linearised RSS)
@@ -435,7 +583,8 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
     sigma = channelSigma(fit, fitMatrix(data.size(), fit.entries, base.r.fit));  // current model
     const Eigen::VectorXd rb = weightedVector(fit.entries, base.r.fit, sigma);
     const double rss_base = rb.squaredNorm();
-    // Screening: each remaining candidate with the accepted ones, linearised (one LS solve).
+    // Screening: each remaining candidate with the accepted ones, linearised about the current
+    // model (one LS solve for the increments; the accepted effects may be nonlinear).
     std::vector<std::pair<double, int>> order;
     for (int c = 0; c < static_cast<int>(lin.candidates.size()); ++c) {
       if (std::find(accepted.begin(), accepted.end(), c) != accepted.end() ||
@@ -446,9 +595,8 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
       Eigen::MatrixXd J(fit.entries.size(), which.size());
       for (std::size_t i = 0; i < which.size(); ++i)
         J.col(i) = weightedVector(fit.entries, lin.columns[which[i]].fit, sigma);
-      const Eigen::VectorXd r0w = weightedVector(fit.entries, r0.fit, sigma);
-      const Eigen::VectorXd p = (J.transpose() * J).ldlt().solve(-J.transpose() * r0w);
-      order.push_back({(r0w + J * p).squaredNorm(), c});
+      const Eigen::VectorXd p = (J.transpose() * J).ldlt().solve(-J.transpose() * rb);
+      order.push_back({(rb + J * p).squaredNorm(), c});
     }
     if (order.empty()) break;
     std::sort(order.begin(), order.end());
@@ -458,7 +606,15 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
     parallelFor(refined, [&](int i) {
       std::vector<int> which = accepted;
       which.push_back(order[i].second);
-      scored[i] = score(ctx, chordFit(ctx, lin, which, sigma, kIterations), sigma, rss_base, n, rb);
+      Fit f = chordFit(ctx, lin, which, sigma, kIterations);
+      const bool linear = std::all_of(f.effects.begin(), f.effects.end(),
+                                      [](const Effect& e) { return effectInfo(e.kind).linear; });
+      if (!accepted.empty() && !linear) {  // from the accepted values, by Gauss–Newton
+        for (std::size_t j = 0; j < accepted.size(); ++j) f.effects[j] = base.effects[j];
+        f.r = ctx.evaluate(f.effects);
+        f = gaussNewton(ctx, f, sigma, 2);
+      }
+      scored[i] = score(ctx, f, sigma, rss_base, n, rb);
       scored[i].which = which;
     });
     if (accepted.empty()) {
@@ -520,6 +676,40 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
   }
   for (std::size_t i = 0; i < dg.causes.size(); ++i) dg.causes[i].effect.value = base.effects[i].value;
   dg.extended_robot = withEffects(robot, base.effects);
+  const bool inertial_allowed =
+      o.kinds.empty() || std::find(o.kinds.begin(), o.kinds.end(), EffectKind::Inertial) != o.kinds.end();
+  if (inertial_allowed) {
+    const auto stage = [&](const Fit& b) {
+      return fitInertial(ctx, withEffects(robot, b.effects), b,
+                         channelSigma(fit, fitMatrix(data.size(), fit.entries, b.r.fit)), o);
+    };
+    InertialStage st = stage(base);
+    const std::vector<int> dropped =
+        st.result.accepted ? supersededByInertial(ctx, lin, accepted, base.effects, st, o.significance)
+                           : std::vector<int>{};
+    if (!dropped.empty()) {  // refit the named effects that remain, then the inertial ones
+      std::vector<int> keep;
+      std::vector<Cause> causes;
+      for (std::size_t i = 0; i < accepted.size(); ++i)
+        if (std::find(dropped.begin(), dropped.end(), static_cast<int>(i)) == dropped.end()) {
+          keep.push_back(accepted[i]);
+          causes.push_back(dg.causes[i]);
+        }
+      const Fit reduced = keep.empty() ? Fit{{}, r0, {}}
+                                       : gaussNewton(ctx, chordFit(ctx, lin, keep, sigma, kIterations), sigma, 3);
+      InertialStage st2 = stage(reduced);
+      if (st2.result.accepted) {
+        for (std::size_t i = 0; i < causes.size(); ++i) causes[i].effect.value = reduced.effects[i].value;
+        dg.causes = causes;
+        st = std::move(st2);
+      }
+    }
+    dg.inertial = st.result;
+    if (st.result.accepted) {
+      dg.causes.push_back({{EffectKind::Inertial, kNoJoint, kNaN}, kNaN, st.result.p_value, {}});
+      dg.extended_robot = st.robot;
+    }
+  }
   dg.extended_residuals = residuals(prepared, dg.extended_robot, mo, all);
   dg.nominal_all = channelReport(prepared, fit.entries, held.entries, dg.nominal_residuals, all, robot, mo);
   dg.nominal = channelReport(prepared, {}, held.entries, dg.nominal_residuals, dg.holdout_rows, robot, mo);
@@ -532,6 +722,7 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
   for (int c = 0; c < kNumChannels; ++c)
     dg.rms_reduction_pct[c] = pct(dg.nominal.rms[c], dg.extended.rms[c]);
   dg.overall_pct = pct(dg.nominal.normalised_rms, dg.extended.normalised_rms);
+  std::tie(dg.effect_channels, dg.effect_channels_pct) = effectChannels(held.entries, hn, he);
   const auto& sn = dg.nominal.simulation_error;
   const auto& se = dg.extended.simulation_error;
   dg.simulation_error_reduction_pct = sn.size() ? pct(sn(5), se(5)) : kNaN;

@@ -40,6 +40,37 @@ void channelReportJson(JsonWriter& w, const ChannelReport& r) {
   w.endObject();
 }
 
+void inertialJson(JsonWriter& w, const InertialResult& r) {
+  w.key("inertial");
+  if (!r.tried) {
+    w.null();
+    return;
+  }
+  w.beginObject().key("accepted").value(r.accepted).key("p_value").value(r.p_value);
+  w.key("method").value(
+      "weighted least squares, links physically consistent (m > 0, I > 0, CoM on its link) "
+      "by a log-barrier interior-point method; base parameters by QR with column pivoting");
+  w.key("rank").value(r.base.rank);
+  w.key("holdout_rms").beginObject().key("before").value(r.holdout_rms_before);
+  w.key("after").value(r.holdout_rms_after).endObject();
+  w.key("base_parameters").beginArray();
+  for (int i = 0; i < r.base.rank; ++i) {
+    w.beginObject().key("name").value(r.base.label(i));
+    w.key("unit").value(kInertialParameterUnits[r.base.independent[i]]);
+    w.key("nominal").value(r.base_nominal(i)).key("value").value(r.base_fitted(i));
+    w.key("stderr").value(r.base_stderr(i)).endObject();
+  }
+  w.endArray().key("parameters").beginArray();
+  for (int k = 0; k < kNumInertialParameters; ++k) {
+    w.beginObject().key("name").value(kInertialParameterNames[k]);
+    w.key("unit").value(kInertialParameterUnits[k]);
+    w.key("nominal").value(r.nominal(k)).key("value").value(r.fitted(k)).endObject();
+  }
+  w.endArray().key("active_constraints").beginArray();
+  for (const std::string& a : r.active) w.value(a);
+  w.endArray().endObject();
+}
+
 void jointValue(JsonWriter& w, const Effect& e) {
   w.key("effect").value(effectInfo(e.kind).name).key("joint");
   if (e.joint == kNoJoint) w.null(); else w.value(jointName(e.joint));
@@ -76,6 +107,9 @@ std::string causePhrase(const Cause& c) {
     case EffectKind::Payload: return "an extra mass of " + value + " kg at the hip";
     case EffectKind::TrunkCom: return "a trunk centre of mass moved by " + value + " m along the trunk";
     case EffectKind::Slope: return "a ground slope of " + value + " rad";
+    case EffectKind::Inertial:
+      return "link inertial parameters differing from the robot file's (a physically consistent "
+             "fit of the base inertial parameters, section Inertial)";
   }
   return info.name;
 }
@@ -114,8 +148,13 @@ std::string diagnosisJson(const Diagnosis& d) {
   w.key("gain").beginObject();
   channelMap(w, "rms_reduction_pct", d.rms_reduction_pct);
   w.key("overall_pct").value(d.overall_pct);
+  w.key("effect_channels").beginArray();
+  for (int c : d.effect_channels) w.value(kChannelNames[c]);
+  w.endArray().key("effect_channels_pct").value(d.effect_channels_pct);
   w.key("simulation_error_reduction_pct").value(d.simulation_error_reduction_pct);
-  w.endObject().endObject();
+  w.endObject();
+  inertialJson(w, d.inertial);
+  w.endObject();
   return w.str() + "\n";
 }
 
@@ -138,6 +177,24 @@ std::string residualsCsv(const MeasuredData& data, const Diagnosis& d) {
     out << '\n';
   }
   return out.str();
+}
+
+void inertialReport(std::ostream& out, const InertialResult& r) {
+  out << "\n## Inertial (last resort: no named effect left is significant)\n\n"
+      << (r.accepted ? "Accepted" : "Not accepted") << ": p = " << fmt(r.p_value, "%.2g")
+      << " (χ² with " << r.base.rank << " degrees of freedom), held-out normalised RMS "
+      << fmt(r.holdout_rms_before) << " → " << fmt(r.holdout_rms_after)
+      << ". Base parameters (QR with column pivoting of the stacked regressor; the others are "
+         "regrouped into them):\n\n| base parameter | unit | nominal | fitted | stderr |\n"
+         "|---|---|---|---|---|\n";
+  for (int i = 0; i < r.base.rank; ++i)
+    out << "| " << r.base.label(i) << " | " << kInertialParameterUnits[r.base.independent[i]]
+        << " | " << fmt(r.base_nominal(i), "%.4g") << " | " << fmt(r.base_fitted(i), "%.4g")
+        << " | " << fmt(r.base_stderr(i), "%.2g") << " |\n";
+  out << "\nPhysical consistency (m > 0, I > 0, CoM on its link) enforced by a log-barrier "
+         "interior-point least squares; binding constraints: ";
+  for (const std::string& a : r.active) out << "`" << a << "` ";
+  out << (r.active.empty() ? "none" : "(the unconstrained fit was not physical)") << ".\n";
 }
 
 std::string diagnosisReport(const Diagnosis& d) {
@@ -171,8 +228,10 @@ std::string diagnosisReport(const Diagnosis& d) {
         << jointPhrase(channel) << " by " << fmt(std::sqrt(square / std::max(1.0, n))) << " "
         << kChannelUnits[channel] << " (RMS): " << causePhrase(d.causes[0]) << " explains it";
     for (std::size_t k = 1; k < d.causes.size(); ++k) out << ", with " << causePhrase(d.causes[k]);
-    out << "; predictions on held-out steps improve by " << fmt(d.overall_pct, "%.0f")
-        << " % overall (" << fmt(d.rms_reduction_pct[channel], "%.0f") << " % on that channel).\n\n";
+    out << "; predictions on held-out steps improve by " << fmt(d.effect_channels_pct, "%.0f")
+        << " % on the channels the causes act on (" << fmt(d.overall_pct, "%.0f")
+        << " % over all channels, " << fmt(d.rms_reduction_pct[channel], "%.0f")
+        << " % on that channel).\n\n";
   }
   out << "## Causes\n\n";
   for (const Cause& c : d.causes) {
@@ -195,6 +254,13 @@ std::string diagnosisReport(const Diagnosis& d) {
     out << "\nOpen-loop single-support simulation error (RMS over all angles): "
         << fmt(d.nominal.simulation_error(5)) << " rad → " << fmt(d.extended.simulation_error(5))
         << " rad (" << fmt(d.simulation_error_reduction_pct, "%.0f") << " % lower).\n";
+  if (!d.effect_channels.empty()) {
+    out << "\nChannels the causes act on (90 % of the change in the predictions):";
+    for (int c : d.effect_channels) out << " " << kChannelNames[c];
+    out << "; their noise-normalised held-out RMS drops by " << fmt(d.effect_channels_pct, "%.1f")
+        << " %.\n";
+  }
+  if (d.inertial.tried) inertialReport(out, d.inertial);
   out << "\nPreprocessing: " << d.smoothing << ".\n";
   return out.str();
 }
@@ -203,6 +269,17 @@ std::string extendedRobotYaml(const std::string& robot_path, const RobotParams& 
   YAML::Node root = loadYamlFile(robot_path);
   for (const char* key : {"joint_extras", "sensors", "hip_payload", "trunk_com_shift", "ground_slope"})
     root.remove(key);
+  // The fitted inertial parameters; the file's own text where they were not fitted.
+  const auto set = [&](const char* map, const std::string& key, double value) {
+    YAML::Node node = root[map][key];
+    if (node.as<double>() != value) node = value;
+  };
+  for (int i = 0; i < 5; ++i) {
+    const std::string n = std::to_string(i + 1);
+    set("masses", "m" + n, extended.mass[i]);
+    set("com_offsets", "s" + n, extended.s[i]);
+    set("inertias", "I" + n, extended.inertia[i]);
+  }
   YAML::Emitter emit;
   emit.SetDoublePrecision(17);
   emit << root;

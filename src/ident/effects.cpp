@@ -20,6 +20,7 @@ constexpr std::array<EffectInfo, kNumEffectKinds> kEffects = {{
     {"payload", "kg", false, false, false, 0.5, false},
     {"trunk_com", "m", false, false, false, 5e-3, false},
     {"slope", "rad", false, false, false, 1e-3, false},
+    {"inertial", "", false, false, false, 1.0, true},
 }};
 
 // Width of the smoothed sign of the backlash dead band [N·m] (issue: "about 1 N·m").
@@ -54,6 +55,9 @@ Effect parseEffectSpec(const std::string& spec) {
       found = true;
     }
   if (!found) throw std::invalid_argument("unknown effect '" + name + "'");
+  if (e.kind == EffectKind::Inertial)
+    throw std::invalid_argument("inertial has no single value: change the robot file's masses, "
+                                "com_offsets and inertias instead");
   const EffectInfo& info = effectInfo(e.kind);
   if (info.per_joint) {
     if (at == std::string::npos) throw std::invalid_argument(name + " needs @JOINT");
@@ -93,6 +97,7 @@ RobotParams withEffect(RobotParams r, const Effect& e) {
     case EffectKind::Payload: r.hip_payload += e.value; break;
     case EffectKind::TrunkCom: r.trunk_com_shift += e.value; break;
     case EffectKind::Slope: r.ground_slope += e.value; break;
+    case EffectKind::Inertial: break;  // many parameters: withInertialChange
   }
   return r;
 }

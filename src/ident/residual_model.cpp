@@ -44,9 +44,9 @@ bool hasBacklash(const SensorModel& s) {
 
 // Link kinematics from the measured ones: minus the constant encoder offsets, and minus the
 // backlash shift (a signal of the measured torques, differentiated by the same filter).
-Kinematics linkKinematics(const PreparedData& p, const RobotParams& robot,
-                          const StanceModels& sm) {
-  Kinematics k = p.measured;
+Kinematics linkKinematics(const PreparedData& p, const RobotParams& robot, const StanceModels& sm,
+                          const Kinematics& measured, const SmoothingDifferentiator& differentiator) {
+  Kinematics k = measured;
   const MeasuredData& d = p.data;
   const SensorModel& s = robot.sensors;
   std::vector<Vec5> shift(d.size());
@@ -61,7 +61,7 @@ Kinematics linkKinematics(const PreparedData& p, const RobotParams& robot,
     }
   }
   if (d.has_torque && hasBacklash(s)) {
-    const Kinematics b = differentiate(p.differentiator, shift);
+    const Kinematics b = differentiate(differentiator, shift);
     for (std::size_t i = 0; i < d.size(); ++i) {
       k.q[i] -= b.q[i];
       k.qd[i] -= b.qd[i];
@@ -86,12 +86,12 @@ void putGamma(const MeasuredData& d, std::size_t i, const Vec4& predicted, const
 }
 
 void singleSupportRow(const PreparedData& p, const StanceModels& sm, const Kinematics& k,
-                      std::size_t i, double* row) {
+                      const Kinematics& ka, std::size_t i, double* row) {
   const MeasuredData& d = p.data;
   const int st = static_cast<int>(d.stance[i]);
   const Model& m = sm.model[st];
   const PinnedMotionForces<double> f = pinnedMotionForces(m, chainState(m, k.q[i], k.qd[i]), k.qdd[i]);
-  row[kAlphaRow] = f.tau(0);
+  row[kAlphaRow] = pinnedMotionForces(m, chainState(m, ka.q[i], ka.qd[i]), ka.qdd[i]).tau(0);
   const Vec4 gamma = solveDGamma25(Vec4(f.tau.tail<4>())) +
                      frictionTorque(m, jointSpeeds(k.qd[i]), SignMode::Smooth);  // (3.57)
   putGamma(d, i, sm.gain[st].cwiseProduct(gamma) + sm.offset[st], k.qd[i], row);
@@ -133,18 +133,21 @@ PreparedData::PreparedData(const MeasuredData& d, const PreprocessOptions& o)
     : data(d),
       segments(dataSegments(d)),
       differentiator(d.t, segments, o.half_window, o.order),
-      measured(differentiate(differentiator, d.q)) {}
+      alpha_row_differentiator(d.t, segments, o.alpha_row_half_window, o.alpha_row_order),
+      measured(differentiate(differentiator, d.q)),
+      measured_alpha_row(differentiate(alpha_row_differentiator, d.q)) {}
 
 ResidualMatrix residuals(const PreparedData& p, const RobotParams& robot,
                          const ModelOptions& model_options, const std::vector<char>& rows) {
   const StanceModels sm(robot, model_options);
-  const Kinematics k = linkKinematics(p, robot, sm);
+  const Kinematics k = linkKinematics(p, robot, sm, p.measured, p.differentiator);
+  const Kinematics ka = linkKinematics(p, robot, sm, p.measured_alpha_row, p.alpha_row_differentiator);
   ResidualMatrix r = ResidualMatrix::Constant(p.data.size(), kNumChannels, kNaN);
   for (const Segment& s : p.segments)
     for (std::size_t i = s.begin; i < s.end; ++i) {
       if (!rows[i]) continue;
       if (s.phase == Phase::SingleSupport)
-        singleSupportRow(p, sm, k, i, r.row(i).data());
+        singleSupportRow(p, sm, k, ka, i, r.row(i).data());
       else
         doubleSupportRow(p, sm, k, robot.ground_slope, i, r.row(i).data());
     }
@@ -156,7 +159,7 @@ Eigen::VectorXd simulationError(const PreparedData& p, const RobotParams& robot,
   const MeasuredData& d = p.data;
   if (!d.has_torque) return Eigen::VectorXd();
   const StanceModels sm(robot, model_options);
-  const Kinematics k = linkKinematics(p, robot, sm);
+  const Kinematics k = linkKinematics(p, robot, sm, p.measured, p.differentiator);
   Eigen::VectorXd sum = Eigen::VectorXd::Zero(6);
   double count = 0.0;
   for (const Segment& s : p.segments) {

@@ -196,6 +196,7 @@ Effect randomEffect(EffectKind kind, std::mt19937_64& rng) {
     case EffectKind::Payload: return {kind, kNoJoint, u(2.0, 8.0)};
     case EffectKind::TrunkCom: return {kind, kNoJoint, sign() * u(0.02, 0.05)};
     case EffectKind::Slope: return {kind, kNoJoint, u(0.01, 0.04)};
+    case EffectKind::Inertial: throw std::invalid_argument("inertial is not a synth effect");
   }
   return {kind};
 }

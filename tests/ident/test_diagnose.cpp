@@ -1,6 +1,7 @@
 // gaitopt diagnose on hidden effects (issue 9): one seeded case per effect at 20 steps, null
 // data, two effects at once, a confounded pair, and invariance to column order and to a
-// consistent swap of the stance labels. The >= 100-case hit rate is bench/bench_diagnose.cpp.
+// consistent swap of the stance labels, the `inertial` last resort. The >= 100-case hit rate is
+// bench/bench_diagnose_hitrate.cpp.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include "gaitopt/ident/diagnose.hpp"
 #include "gaitopt/ident/synth.hpp"
 #include "gaitopt/io/gait_file.hpp"
+#include "gaitopt/io/robot_file.hpp"
 #include "test_support.hpp"
 
 using namespace gaitopt;
@@ -30,13 +32,6 @@ MeasuredData synth(const std::vector<Effect>& effects, std::uint64_t seed, int s
 
 double deviation(const Effect& e) { return effectInfo(e.kind).factor ? e.value - 1.0 : e.value; }
 
-double bestChannelGain(const Diagnosis& d) {
-  double best = -1e300;
-  for (double g : d.rms_reduction_pct)
-    if (std::isfinite(g)) best = std::max(best, g);
-  return best;
-}
-
 void requireFound(const Diagnosis& d, const Effect& truth) {
   INFO("truth " << effectLabel(truth) << " = " << truth.value);
   REQUIRE(!d.causes.empty());
@@ -44,10 +39,10 @@ void requireFound(const Diagnosis& d, const Effect& truth) {
   INFO("found " << effectLabel(c.effect) << " = " << c.effect.value << " +- " << c.stderr_);
   CHECK(effectLabel(c.effect) == effectLabel(truth));
   CHECK(std::abs(deviation(c.effect) - deviation(truth)) <= 0.1 * std::abs(deviation(truth)));
-  // The issue asks > 50 %; a large trunk_com shift reaches only ~48 % on its best channel (the
-  // q̈ noise of the alpha row dominates), so the suite checks 40 % and the bench reports the
-  // rate at 50 % (README, "gaitopt diagnose").
-  CHECK(bestChannelGain(d) > 40.0);
+  // The issue's held-out gain, on the channels the cause acts on (Diagnosis::effect_channels).
+  INFO("effect channels gain " << d.effect_channels_pct << " %, overall " << d.overall_pct << " %");
+  CHECK(d.effect_channels_pct > 50.0);
+  CHECK(!d.inertial.accepted);  // a named effect explains the data: no inertial fall-back
 }
 
 }  // namespace
@@ -132,4 +127,50 @@ TEST_CASE("diagnose is invariant to a consistent swap of the stance labels", "[i
   CHECK(effectLabel(a.causes[0].effect) == "viscous@hip_left");
   CHECK(effectLabel(b.causes[0].effect) == "viscous@hip_right");  // the mirrored joint
   CHECK(b.causes[0].effect.value == Approx(a.causes[0].effect.value).epsilon(1e-9));
+}
+
+TEST_CASE("diagnose falls back to the inertial parameters when no named effect explains the data",
+          "[ident][diagnose][inertial]") {
+  // A trunk inertia 40 % above the robot file's: no named effect changes J_trunk alone.
+  RobotParams truth = gait().robot;
+  truth.inertia[2] *= 1.4;
+  SynthOptions so;
+  so.seed = 5;
+  const MeasuredData data = synthesize(truth, gait().parameters, gait().options,
+                                       gait().model_options, {}, so);
+  const Diagnosis d = diagnose(gait().robot, gait().model_options, data);
+  REQUIRE(d.causes.size() == 1);
+  CHECK(d.causes[0].effect.kind == EffectKind::Inertial);
+  CHECK(d.causes[0].p_value < 0.01);
+  REQUIRE(d.inertial.accepted);
+  CHECK(d.inertial.holdout_rms_after < 0.6 * d.inertial.holdout_rms_before);
+  INFO("effect channels gain " << d.effect_channels_pct << " %");
+  CHECK(d.effect_channels_pct > 50.0);
+  // The trunk's inertia about the hip is a base parameter on its own: its change is found.
+  const double truth_change = 0.4 * gait().robot.inertia[2];
+  bool found = false;
+  for (int i = 0; i < d.inertial.base.rank; ++i)
+    if (d.inertial.base.label(i) == "J_trunk") {
+      found = true;
+      const double change = d.inertial.base_fitted(i) - d.inertial.base_nominal(i);
+      INFO("J_trunk change " << change << " +- " << d.inertial.base_stderr(i));
+      CHECK(std::abs(change - truth_change) < 0.1 * truth_change);
+      CHECK(d.inertial.base_stderr(i) < 0.05 * truth_change);
+    }
+  CHECK(found);
+  // Physically consistent, and what extended_robot.yaml carries.
+  const RobotParams& e = d.extended_robot;
+  for (int i = 0; i < 5; ++i) {
+    CHECK(e.mass[i] > 0.0);
+    CHECK(e.inertia[i] > 0.0);
+    CHECK(e.s[i] > 0.0);
+  }
+  CHECK(e.inertia[2] == Approx(truth.inertia[2]).epsilon(0.1));
+  const std::string path = test::sourcePath("configs/robot/rabbit_miossec.yaml");
+  const RobotParams written = parseRobot(YAML::Load(extendedRobotYaml(path, e)), "extended");
+  for (int i = 0; i < 5; ++i) {
+    CHECK(written.mass[i] == e.mass[i]);
+    CHECK(written.s[i] == e.s[i]);
+    CHECK(written.inertia[i] == e.inertia[i]);
+  }
 }

@@ -23,9 +23,13 @@ inline int physicalJointOfMotor(int j, Stance stance) { return stance == Stance:
 
 enum class EffectKind {
   Coulomb, Viscous, RotorInertia, TorqueOffset, TorqueGain, EncoderOffset, Backlash, Payload,
-  TrunkCom, Slope
+  TrunkCom, Slope,
+  // The base inertial parameters (ident/inertial_fit.hpp): many parameters, fitted by
+  // `diagnose` as a last resort, not a one-parameter candidate nor a `synth` effect (change
+  // the robot file's masses and inertias instead). withEffect leaves the robot unchanged.
+  Inertial
 };
-constexpr int kNumEffectKinds = 10;
+constexpr int kNumEffectKinds = 11;
 constexpr int kAlphaJoint = 4;  // encoder_offset on α
 constexpr int kNoJoint = -1;
 
