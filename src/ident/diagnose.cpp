@@ -729,7 +729,10 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
   dg.smoothing = "local polynomial (Savitzky-Golay) fit of degree " +
                  std::to_string(o.preprocess.order) + " over +-" +
                  std::to_string(static_cast<int>(std::round(o.preprocess.half_window * 1000))) +
-                 " ms per phase segment, one-sided at segment ends";
+                 " ms per phase segment, one-sided at segment ends; alpha row: degree " +
+                 std::to_string(o.preprocess.alpha_row_order) + " over +-" +
+                 std::to_string(static_cast<int>(std::round(o.preprocess.alpha_row_half_window * 1000))) +
+                 " ms";
   return dg;
 }
 

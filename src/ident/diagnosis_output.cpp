@@ -235,9 +235,13 @@ std::string diagnosisReport(const Diagnosis& d) {
   }
   out << "## Causes\n\n";
   for (const Cause& c : d.causes) {
-    out << "- `" << effectLabel(c.effect) << "` = " << fmt(c.effect.value, "%.4g") << " ± "
-        << fmt(c.stderr_, "%.2g") << " " << effectInfo(c.effect.kind).unit << ", p = "
-        << fmt(c.p_value, "%.2g");
+    out << "- `" << effectLabel(c.effect) << "` ";
+    if (c.effect.kind == EffectKind::Inertial)
+      out << "(base parameters in the Inertial section)";
+    else
+      out << "= " << fmt(c.effect.value, "%.4g") << " ± " << fmt(c.stderr_, "%.2g") << " "
+          << effectInfo(c.effect.kind).unit;
+    out << ", p = " << fmt(c.p_value, "%.2g");
     if (!c.confounded_with.empty()) {
       out << "; the data cannot tell it from:";
       for (const std::string& s : c.confounded_with) out << " `" << s << "`";
