@@ -66,15 +66,15 @@ void readRobotExtensions(const YamlMap& doc, RobotParams& robot) {
   robot.ground_slope = doc.optionalNumber("ground_slope").value_or(0.0);
   if (std::abs(robot.ground_slope) >= 0.5)
     throw doc.error("ground_slope", "must be within ±0.5 rad, got " + showNumber(robot.ground_slope));
-  // The rocker arc's centre lies on the tibia (plus the offset): both below a tibia length.
-  const double tibia = std::min(robot.l1, robot.l5);
+  // An effective rocker (roll-over shape) may be centred above the knee, not above the hip.
+  const double leg = std::min(robot.l1 + robot.l2, robot.l4 + robot.l5);
   robot.foot_radius = doc.optionalNumber("foot_radius").value_or(0.0);
-  if (!(robot.foot_radius >= 0.0 && robot.foot_radius < tibia))
-    throw doc.error("foot_radius", "must be >= 0 and below the tibia length " + showNumber(tibia) +
+  if (!(robot.foot_radius >= 0.0 && robot.foot_radius < leg))
+    throw doc.error("foot_radius", "must be >= 0 and below the leg length " + showNumber(leg) +
                                        " m, got " + showNumber(robot.foot_radius));
   robot.foot_offset = doc.optionalNumber("foot_offset").value_or(0.0);
-  if (!(std::abs(robot.foot_offset) < tibia))
-    throw doc.error("foot_offset", "must be within ± the tibia length " + showNumber(tibia) +
+  if (!(std::abs(robot.foot_offset) < leg))
+    throw doc.error("foot_offset", "must be within ± the leg length " + showNumber(leg) +
                                        " m, got " + showNumber(robot.foot_offset));
 }
 
