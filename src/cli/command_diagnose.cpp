@@ -17,7 +17,7 @@ namespace {
 
 struct DiagnoseArgs {
   std::string robot, data, out, effects;
-  int holdout = 3;
+  int holdout = 3, holdout_shift = 0;
 };
 
 std::vector<EffectKind> parseKinds(const std::string& list) {
@@ -50,11 +50,16 @@ void registerDiagnoseCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", args->out, "Output directory (created if missing)")->required();
   cmd->add_option("--holdout", args->holdout, "Hold out every K-th step (K >= 2, default 3)")
       ->check(CLI::Range(2, 1000000));
+  cmd->add_option("--holdout-shift", args->holdout_shift,
+                  "Shift the held-out steps by S (0 <= S < K; with K = 2, 0 and 1 swap the fit "
+                  "and held-out halves)")
+      ->check(CLI::Range(0, 1000000));
   cmd->add_option("--effects", args->effects,
                   "Comma-separated candidate effects (default: all), e.g. coulomb,viscous");
   cmd->callback([args, &exit_code]() {
     DiagnoseOptions options;
     options.holdout = args->holdout;
+    options.holdout_shift = args->holdout_shift;
     if (!args->effects.empty()) options.kinds = parseKinds(args->effects);
     const RobotParams robot = loadRobot(args->robot);
     const MeasuredData data = readMeasuredCsv(args->data);

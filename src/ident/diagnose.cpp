@@ -396,9 +396,9 @@ Scored score(const Context& ctx, Fit f, const std::array<double, kNumChannels>& 
   return s;
 }
 
-std::vector<char> holdoutRows(const MeasuredData& data, int holdout, bool held) {
+std::vector<char> holdoutRows(const MeasuredData& data, int holdout, int shift, bool held) {
   std::vector<char> rows(data.size(), 0);
-  int ordinal = -1;
+  int ordinal = shift - 1;
   for (std::size_t i = 0; i < data.size(); ++i) {
     if (i == 0 || data.step[i] != data.step[i - 1]) ++ordinal;
     rows[i] = (ordinal % holdout == holdout - 1) == held;
@@ -559,10 +559,11 @@ constexpr int kIterations = 4;   // chord iterations per refinement
 Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const MeasuredData& data,
                    const DiagnoseOptions& o) {
   if (o.holdout < 2) throw std::invalid_argument("--holdout must be >= 2");
+  if (o.holdout_shift < 0) throw std::invalid_argument("--holdout-shift must be >= 0");
   const PreparedData prepared(data, o.preprocess);
   Diagnosis dg;
-  dg.fit_rows = holdoutRows(data, o.holdout, false);
-  dg.holdout_rows = holdoutRows(data, o.holdout, true);
+  dg.fit_rows = holdoutRows(data, o.holdout, o.holdout_shift, false);
+  dg.holdout_rows = holdoutRows(data, o.holdout, o.holdout_shift, true);
   const std::vector<char> all(data.size(), 1);
   dg.nominal_residuals = residuals(prepared, robot, mo, all);
   const Problem fit{prepared, robot, mo, dg.fit_rows,

@@ -107,6 +107,12 @@ std::string causePhrase(const Cause& c) {
     case EffectKind::Payload: return "an extra mass of " + value + " kg at the hip";
     case EffectKind::TrunkCom: return "a trunk centre of mass moved by " + value + " m along the trunk";
     case EffectKind::Slope: return "a ground slope of " + value + " rad";
+    case EffectKind::RockerFoot:
+      return "a foot that rolls like an arc of radius " + value + " m instead of touching the "
+             "ground at one point (the point foot is the cause)";
+    case EffectKind::FootOffset:
+      return "a foot whose contact point lies " + value + " m ahead of the ankle (the point "
+             "foot is the cause)";
     case EffectKind::Inertial:
       return "link inertial parameters differing from the robot file's (a physically consistent "
              "fit of the base inertial parameters, section Inertial)";
@@ -271,7 +277,8 @@ std::string diagnosisReport(const Diagnosis& d) {
 
 std::string extendedRobotYaml(const std::string& robot_path, const RobotParams& extended) {
   YAML::Node root = loadYamlFile(robot_path);
-  for (const char* key : {"joint_extras", "sensors", "hip_payload", "trunk_com_shift", "ground_slope"})
+  for (const char* key : {"joint_extras", "sensors", "hip_payload", "trunk_com_shift", "ground_slope",
+                          "foot_radius", "foot_offset"})
     root.remove(key);
   // The fitted inertial parameters; the file's own text where they were not fitted.
   const auto set = [&](const char* map, const std::string& key, double value) {

@@ -20,6 +20,8 @@ constexpr std::array<EffectInfo, kNumEffectKinds> kEffects = {{
     {"payload", "kg", false, false, false, 0.5, false},
     {"trunk_com", "m", false, false, false, 5e-3, false},
     {"slope", "rad", false, false, false, 1e-3, false},
+    {"rocker_foot", "m", false, false, false, 1e-2, false},
+    {"foot_offset", "m", false, false, false, 5e-3, false},
     {"inertial", "", false, false, false, 1.0, true},
 }};
 
@@ -97,6 +99,8 @@ RobotParams withEffect(RobotParams r, const Effect& e) {
     case EffectKind::Payload: r.hip_payload += e.value; break;
     case EffectKind::TrunkCom: r.trunk_com_shift += e.value; break;
     case EffectKind::Slope: r.ground_slope += e.value; break;
+    case EffectKind::RockerFoot: r.foot_radius += e.value; break;
+    case EffectKind::FootOffset: r.foot_offset += e.value; break;
     case EffectKind::Inertial: break;  // many parameters: withInertialChange
   }
   return r;

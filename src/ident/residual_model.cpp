@@ -6,6 +6,7 @@
 
 #include "gaitopt/model/forward_dynamics.hpp"
 #include "gaitopt/model/inverse_dynamics.hpp"
+#include "gaitopt/model/rocker_foot.hpp"
 
 namespace gaitopt {
 
@@ -23,7 +24,9 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 struct StanceModels {
   Model model[2];
   Vec4 gain[2], offset[2];
-  StanceModels(const RobotParams& robot, const ModelOptions& options) {
+  double foot_radius, foot_offset, slope;
+  StanceModels(const RobotParams& robot, const ModelOptions& options)
+      : foot_radius(robot.foot_radius), foot_offset(robot.foot_offset), slope(robot.ground_slope) {
     for (int s = 0; s < 2; ++s) {
       const Stance stance = static_cast<Stance>(s);
       model[s] = buildModel(stanceRobot(robot, stance), options);
@@ -90,14 +93,20 @@ void singleSupportRow(const PreparedData& p, const StanceModels& sm, const Kinem
   const MeasuredData& d = p.data;
   const int st = static_cast<int>(d.stance[i]);
   const Model& m = sm.model[st];
-  const PinnedMotionForces<double> f = pinnedMotionForces(m, chainState(m, k.q[i], k.qd[i]), k.qdd[i]);
-  row[kAlphaRow] = pinnedMotionForces(m, chainState(m, ka.q[i], ka.qd[i]), ka.qdd[i]).tau(0);
-  const Vec4 gamma = solveDGamma25(Vec4(f.tau.tail<4>())) +
+  // Point foot: the pinned model; rocker foot: its equations in the ankle frame.
+  const auto forces = [&](const Kinematics& kin) {
+    const ChainState<double> state = chainState(m, kin.q[i], kin.qd[i]);
+    return rockerForces(m, state, pinnedMotionForces(m, state, kin.qdd[i]),
+                        rockerContact(sm.foot_radius, sm.foot_offset, sm.slope, kin.q[i](0),
+                                      kin.qd[i](0), kin.qdd[i](0)));
+  };
+  const RockerForces<double> rf = forces(k);
+  row[kAlphaRow] = forces(ka).tau(0);  // the α row has its own, smoother, kinematics
+  const Vec4 gamma = solveDGamma25(Vec4(rf.tau.tail<4>())) +
                      frictionTorque(m, jointSpeeds(k.qd[i]), SignMode::Smooth);  // (3.57)
   putGamma(d, i, sm.gain[st].cwiseProduct(gamma) + sm.offset[st], k.qd[i], row);
   if (d.has_reactions) {
-    const double M = m.total_mass;
-    const Vec4 predicted(M * f.com_acceleration(0), M * (f.com_acceleration(1) + m.gravity), 0, 0);
+    const Vec4 predicted(rf.reaction(0), rf.reaction(1), 0, 0);  // (1.36)
     for (int c = 0; c < 4; ++c) row[kR1x + c] = d.reactions[i](c) - predicted(c);
   }
 }

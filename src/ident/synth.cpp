@@ -8,7 +8,9 @@
 #include "gaitopt/gait/evaluator.hpp"
 #include "gaitopt/gait/evaluator_impl.hpp"
 #include "gaitopt/io/json_writer.hpp"
+#include "gaitopt/model/dynamics_floating.hpp"
 #include "gaitopt/model/inverse_dynamics.hpp"
+#include "gaitopt/model/rocker_foot.hpp"
 
 namespace gaitopt {
 
@@ -51,16 +53,74 @@ TrueSample dsTrueSample(const Model& m, const GaitOptions& o, const GaitMotion<d
   return {Phase::DoubleSupport, q, id.gamma_star, Vec4(id.R1(0), id.R1(1), id.R2(0), id.R2(1))};
 }
 
+// Single support of a rocker foot (model/rocker_foot.hpp) on the SS path at (α, α̇), from the
+// floating model (1.1) with the rolling constraint — a formulation independent of the
+// ankle-frame equations diagnose fits. X = (q, trunk CoM), the trunk CoM following the ankle
+// A(α); in A Ẍ + C + G = D_Γ Γ + D1ᵀ R + T₁ᵀ ((P − A) × R) the α, x and z rows have no Γ and
+// are affine in (α̈, R): they give α̈ and the reaction; the joint rows then give Γ.
+struct RollingSolution {
+  double alphadd;
+  Vec5 q, qd, qdd;
+  Vec2 reaction;
+  Vec4 gamma;  // after friction
+};
+
+RollingSolution rollingFootSS(const Model& m, double radius, double offset, double slope, const Vec5& q,
+                              const Vec5& qs, const Vec5& qss, double alphad) {
+  const Vec5 trunk = m.pinned.body.row(2).transpose();
+  const Vec5 qd = qs * alphad;
+  const ChainState<double> st = chainState(m, q, qd);
+  const auto residual = [&](double alphadd, const Vec2& R, Vec5* qdd_out) {
+    const Vec5 qdd = qs * alphadd + qss * alphad * alphad;
+    const RockerContact<double> c = rockerContact(radius, offset, slope, q(0), alphad, alphadd);
+    Vector7<double> X, Xd, Xdd;
+    X << q, chainPoint(trunk, st);  // ankle position: the terms do not depend on it
+    Xd << qd, c.ankle_jacobian * alphad + chainPointVelocity(trunk, st);
+    Xdd << qdd, c.ankle_acceleration + chainPointAcceleration(trunk, st, Vec5(m.theta_map * qdd));
+    const FloatingTerms<double> t = floatingTerms(m, X, Xd);
+    Vector7<double> h = t.A * Xdd + t.C + t.G - t.D1.transpose() * R;
+    h.head<5>() -= (c.contact_arm(0) * R(1) - c.contact_arm(1) * R(0)) * m.theta_map.row(0).transpose();
+    if (qdd_out) *qdd_out = qdd;
+    return h;
+  };
+  const Vector7<double> h0 = residual(0.0, Vec2::Zero(), nullptr);
+  const Vector7<double> columns[3] = {residual(1.0, Vec2::Zero(), nullptr) - h0,
+                                      residual(0.0, Vec2(1, 0), nullptr) - h0,
+                                      residual(0.0, Vec2(0, 1), nullptr) - h0};
+  Eigen::Matrix3d K;
+  Eigen::Vector3d rhs;
+  const int rows[3] = {0, 5, 6};  // α, x, z
+  for (int i = 0; i < 3; ++i) {
+    rhs(i) = -h0(rows[i]);
+    for (int j = 0; j < 3; ++j) K(i, j) = columns[j](rows[i]);
+  }
+  const Eigen::Vector3d x = K.partialPivLu().solve(rhs);
+  RollingSolution s;
+  s.alphadd = x(0);
+  s.reaction = x.tail<2>();
+  s.q = q;
+  s.qd = qd;
+  const Vector7<double> h = residual(s.alphadd, s.reaction, &s.qdd);
+  s.gamma = solveDGamma25(Vec4(h.segment<4>(1)));
+  return s;
+}
+
 // Zero dynamics of the SS path δ = h(α) (α-row of (1.32), no foot torque) in the gravity
-// frame: α̈ = −(τ_c α̇² + G)/τ_a with τ_a, τ_c slope-independent (relative angles only).
+// frame: α̈ = −(τ_c α̇² + G)/τ_a with τ_a, τ_c slope-independent (relative angles only); with
+// a rocker foot, α̈ of the rolling model.
 struct ZeroDynamics {
   const Model& m;
   const GaitMotion<double>& mo;
   double slope;
+  double foot_radius, foot_offset;
   detail::SsPathPoint<double> point(double alpha) const {
     return detail::ssPathPoint(m, mo, alpha);
   }
+  RollingSolution rolling(const detail::SsPathPoint<double>& pt, double alphadot) const {
+    return rollingFootSS(m, foot_radius, foot_offset, slope, toGravityFrame(pt.q, slope), pt.qs, pt.qss, alphadot);
+  }
   double acceleration(const detail::SsPathPoint<double>& pt, double alphadot) const {
+    if (foot_radius != 0.0 || foot_offset != 0.0) return rolling(pt, alphadot).alphadd;
     const ChainState<double> st =
         chainState(m, toGravityFrame(pt.q, slope), Vec5(Vec5::Zero()));
     const double g0 =
@@ -77,6 +137,11 @@ struct ZeroDynamics {
 
 TrueSample ssTrueSample(const Model& m, const ZeroDynamics& zd, const Vec2& x) {
   const detail::SsPathPoint<double> pt = zd.point(x(0));
+  if (zd.foot_radius != 0.0 || zd.foot_offset != 0.0) {
+    const RollingSolution r = zd.rolling(pt, x(1));
+    const Vec4 gamma_star = r.gamma + frictionTorque(m, jointSpeeds(r.qd), SignMode::Smooth);
+    return {Phase::SingleSupport, r.q, gamma_star, Vec4(r.reaction(0), r.reaction(1), 0.0, 0.0)};
+  }
   const double add = zd.acceleration(pt, x(1));
   const Vec5 q = toGravityFrame(pt.q, zd.slope);
   const Vec5 qd = pt.qs * x(1), qdd = pt.qs * add + pt.qss * x(1) * x(1);
@@ -87,12 +152,14 @@ TrueSample ssTrueSample(const Model& m, const ZeroDynamics& zd, const Vec2& x) {
 
 // Samples of one step at times k/rate from its start; empty if the TRUE zero dynamics stall.
 std::vector<TrueSample> stepSamples(const Model& m, const GaitOptions& o,
-                                    const GaitMotion<double>& mo, double slope, double rate) {
+                                    const GaitMotion<double>& mo, const RobotParams& truth,
+                                    double rate) {
+  const double slope = truth.ground_slope;
   std::vector<TrueSample> out;
   const double dt = 1.0 / rate;
   int k = 0;
   for (; k * dt < mo.T_DS; ++k) out.push_back(dsTrueSample(m, o, mo, k * dt, slope));
-  const ZeroDynamics zd{m, mo, slope};
+  const ZeroDynamics zd{m, mo, slope, truth.foot_radius, truth.foot_offset};
   const double direction = mo.alpha_fSS < mo.alpha_iSS ? -1.0 : 1.0;
   Vec2 x(mo.alpha_iSS, mo.alphadot_iSS);
   double t = mo.T_DS;
@@ -167,7 +234,7 @@ MeasuredData synthesize(const RobotParams& robot, const GaitParameters& gait,
       const double scale = options.variation / (1.0 + attempt / 10);
       const GaitEvaluation<double> e = ev.evaluate(varied(gait, excitation, scale));
       if (e.motion_computed && !e.numerically_undefined)
-        samples = stepSamples(models[static_cast<int>(stance)], gait_options, e.motion, truth.ground_slope,
+        samples = stepSamples(models[static_cast<int>(stance)], gait_options, e.motion, truth,
                               options.rate);
     }
     if (samples.empty())
@@ -196,6 +263,8 @@ Effect randomEffect(EffectKind kind, std::mt19937_64& rng) {
     case EffectKind::Payload: return {kind, kNoJoint, u(2.0, 8.0)};
     case EffectKind::TrunkCom: return {kind, kNoJoint, sign() * u(0.02, 0.05)};
     case EffectKind::Slope: return {kind, kNoJoint, u(0.01, 0.04)};
+    case EffectKind::RockerFoot: return {kind, kNoJoint, u(0.02, 0.1)};
+    case EffectKind::FootOffset: return {kind, kNoJoint, sign() * u(0.01, 0.04)};
     case EffectKind::Inertial: throw std::invalid_argument("inertial is not a synth effect");
   }
   return {kind};

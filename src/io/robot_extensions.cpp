@@ -1,5 +1,6 @@
 #include "gaitopt/io/robot_extensions.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <sstream>
@@ -65,6 +66,16 @@ void readRobotExtensions(const YamlMap& doc, RobotParams& robot) {
   robot.ground_slope = doc.optionalNumber("ground_slope").value_or(0.0);
   if (std::abs(robot.ground_slope) >= 0.5)
     throw doc.error("ground_slope", "must be within ±0.5 rad, got " + showNumber(robot.ground_slope));
+  // An effective rocker (roll-over shape) may be centred above the knee, not above the hip.
+  const double leg = std::min(robot.l1 + robot.l2, robot.l4 + robot.l5);
+  robot.foot_radius = doc.optionalNumber("foot_radius").value_or(0.0);
+  if (!(robot.foot_radius >= 0.0 && robot.foot_radius < leg))
+    throw doc.error("foot_radius", "must be >= 0 and below the leg length " + showNumber(leg) +
+                                       " m, got " + showNumber(robot.foot_radius));
+  robot.foot_offset = doc.optionalNumber("foot_offset").value_or(0.0);
+  if (!(std::abs(robot.foot_offset) < leg))
+    throw doc.error("foot_offset", "must be within ± the leg length " + showNumber(leg) +
+                                       " m, got " + showNumber(robot.foot_offset));
 }
 
 std::string robotExtensionsYaml(const RobotParams& robot) {
@@ -85,6 +96,8 @@ std::string robotExtensionsYaml(const RobotParams& robot) {
   if (robot.trunk_com_shift != 0.0)
     out << "trunk_com_shift: " << formatDouble(robot.trunk_com_shift) << "\n";
   if (robot.ground_slope != 0.0) out << "ground_slope: " << formatDouble(robot.ground_slope) << "\n";
+  if (robot.foot_radius != 0.0) out << "foot_radius: " << formatDouble(robot.foot_radius) << "\n";
+  if (robot.foot_offset != 0.0) out << "foot_offset: " << formatDouble(robot.foot_offset) << "\n";
   return out.str();
 }
 

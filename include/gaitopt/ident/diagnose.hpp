@@ -39,6 +39,9 @@ namespace gaitopt {
 
 struct DiagnoseOptions {
   int holdout = 3;                 // every K-th step held out (K >= 2)
+  // Steps whose ordinal + holdout_shift is ≡ K − 1 (mod K) are held out: with K = 2 and
+  // shifts 0 and 1 the two runs swap the fit and held-out steps (e.g. one leg's stances each).
+  int holdout_shift = 0;
   std::vector<EffectKind> kinds;   // candidate effects; empty: all
   double significance = 0.01;
   // Practical significance: a cause must also cut the held-out RMS of some channel by this

@@ -1,7 +1,8 @@
 #pragma once
 // The candidate effects of issue 9 (what the thesis model may get wrong on a real robot), their
 // value conventions, and how each changes a robot description (model/robot_params.hpp,
-// JointExtras, SensorModel, hip_payload, trunk_com_shift, ground_slope). The same description
+// JointExtras, SensorModel, hip_payload, trunk_com_shift, ground_slope,
+// foot_radius, foot_offset). The same description
 // is the TRUE model of `gaitopt synth` and the extended model fitted by `gaitopt diagnose`.
 //
 // Motors follow the thesis convention (1 = knee of leg 1, 2 = hip of leg 1, 3 = hip of leg 2,
@@ -23,13 +24,13 @@ inline int physicalJointOfMotor(int j, Stance stance) { return stance == Stance:
 
 enum class EffectKind {
   Coulomb, Viscous, RotorInertia, TorqueOffset, TorqueGain, EncoderOffset, Backlash, Payload,
-  TrunkCom, Slope,
+  TrunkCom, Slope, RockerFoot, FootOffset,
   // The base inertial parameters (ident/inertial_fit.hpp): many parameters, fitted by
   // `diagnose` as a last resort, not a one-parameter candidate nor a `synth` effect (change
   // the robot file's masses and inertias instead). withEffect leaves the robot unchanged.
   Inertial
 };
-constexpr int kNumEffectKinds = 11;
+constexpr int kNumEffectKinds = 13;
 constexpr int kAlphaJoint = 4;  // encoder_offset on α
 constexpr int kNoJoint = -1;
 

@@ -14,6 +14,10 @@
 //   hip_payload: 4.0               # kg at the hip
 //   trunk_com_shift: 0.03          # m added to s3
 //   ground_slope: 0.02             # rad, + uphill
+//   foot_radius: 0.1               # m, rolling arc feet (rocker), 0 = point feet;
+//                                  # 0 <= value < leg length min(l1 + l2, l4 + l5)
+//   foot_offset: 0.05              # m, the arc's lowest point ahead of the ankle when the
+//                                  # tibia is perpendicular to the ground; |value| < leg length
 #include <string>
 
 #include "gaitopt/io/yaml_reader.hpp"

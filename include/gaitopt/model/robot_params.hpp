@@ -80,6 +80,8 @@ struct RobotParams {
   double hip_payload = 0.0;     // extra point mass at the hip [kg], folded like the bar (1.24)
   double trunk_com_shift = 0.0; // added to s3 (trunk alone, before the bar) [m]
   double ground_slope = 0.0;    // ground inclination [rad], + uphill; used by ident/ only
+  double foot_radius = 0.0;     // rolling arc feet (model/rocker_foot.hpp) [m], 0 = point
+  double foot_offset = 0.0;     // the arc's lowest point ahead of the ankle [m]; ident/ only
 };
 
 }  // namespace gaitopt
