@@ -11,9 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "gaitopt/export/controller_export.hpp"
 #include "gaitopt/gait/evaluator.hpp"
 #include "gaitopt/gait/summary.hpp"
 #include "gaitopt/gait/trajectory.hpp"
+#include "gaitopt/io/atomic_file.hpp"
 #include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/io/model_report.hpp"
@@ -123,6 +125,44 @@ py::dict optimize(const std::string& config_path, const std::optional<std::strin
   return result;
 }
 
+// As `gaitopt export --gait FILE --format json`: the JSON document as a dict with each
+// `samples` column a numpy array; with `out`, the file is written as by the CLI (csv or json by
+// `format`). An undefined step raises ValueError naming the gait file.
+py::dict exportGait(const std::string& gait_path, int steps, double rate,
+                    const std::string& first_stance, const std::string& format,
+                    const std::optional<std::string>& out) {
+  if (steps < 1 || !(rate > 0.0) || rate > 1e5)
+    throw py::value_error("export: steps >= 1 and 0 < rate <= 1e5 expected");
+  if (first_stance != "left" && first_stance != "right")
+    throw py::value_error("first_stance: 'left' or 'right' expected, got '" + first_stance + "'");
+  if (format != "csv" && format != "json")
+    throw py::value_error("format: 'csv' or 'json' expected, got '" + format + "'");
+  const GaitFile gait = loadGaitFile(gait_path);
+  std::string json;
+  {
+    py::gil_scoped_release release;
+    const GaitEvaluator evaluator(gait.robot, gait.options, gait.model_options);
+    const GaitEvaluation<double> e = evaluator.evaluate(gait.parameters);
+    if (!e.defined() || !e.motion_computed)
+      throw py::value_error(gait_path + ": the step is undefined (failed level " +
+                            std::to_string(e.failed_level) + "); nothing exported");
+    ExportRequest req;
+    req.steps = steps;
+    req.rate = rate;
+    req.first_stance = first_stance == "left" ? Leg::Left : Leg::Right;
+    const Model model = buildModel(gait.robot, gait.model_options);  // the file's full friction
+    const std::vector<ExportRow> rows = exportTrajectory(evaluator, e, model, req);
+    const ExportMetadata meta = exportMetadata(gait, e, req);
+    json = exportJson(meta, rows, e);
+    if (out) writeFileAtomically(*out, format == "csv" ? exportCsv(meta, rows) : json);
+  }
+  py::dict result = fromJson(json);
+  const py::object array = py::module_::import("numpy").attr("array");
+  py::dict samples = result["samples"];
+  for (auto item : samples) samples[item.first] = array(item.second);
+  return result;
+}
+
 }  // namespace
 }  // namespace gaitopt
 
@@ -146,4 +186,9 @@ PYBIND11_MODULE(gaitopt, m) {
   m.def("optimize", &optimize, py::arg("config"), py::arg("out") = py::none(),
         "Optimise as `gaitopt optimize --config CONFIG`: summary.json as a dict, plus "
         "'trajectory' and 'gait_yaml'; writes the files into `out` when given");
+  m.def("export", &exportGait, py::arg("gait"), py::arg("steps") = 10, py::arg("rate") = 1000.0,
+        py::arg("first_stance") = "left", py::arg("format") = "csv", py::arg("out") = py::none(),
+        "Export N steps for a controller as `gaitopt export`: the JSON document as a dict "
+        "(metadata, units, samples as numpy arrays by column, phases); writes `out` (csv or "
+        "json by `format`) when given");
 }

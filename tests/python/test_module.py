@@ -107,6 +107,31 @@ def test_optimize(binary, scratch):
     check(os.path.exists(os.path.join(py_out, "gait.yaml")), "optimize(out=...) writes the files")
 
 
+def test_export(binary, scratch):
+    cli_json, py_csv = os.path.join(scratch, "walk_cli.json"), os.path.join(scratch, "walk_py.csv")
+    run = cli(binary, "export", "--gait", GAIT, "--steps", "3", "--rate", "250", "--format", "json",
+              "--first-stance", "right", "--out", cli_json)
+    check(run.returncode == 0, f"gaitopt export exit code {run.returncode}")
+    result = gaitopt.export(GAIT, steps=3, rate=250, first_stance="right", out=py_csv)
+    with open(cli_json) as f:
+        expected = json.load(f)
+    samples, expected_samples = result.pop("samples"), expected.pop("samples")
+    check(result == expected, "export(): metadata, units and phases == CLI JSON")
+    check(sorted(samples) == sorted(expected_samples) and all(
+        isinstance(samples[k], np.ndarray) and samples[k].tolist() == expected_samples[k]
+        for k in samples), "export(): every samples column == CLI JSON, as numpy arrays")
+    check(samples["step"][-1] == 2 and samples["stance"][0] == "right", "export(): 3 steps, right first")
+    run = cli(binary, "export", "--gait", GAIT, "--steps", "3", "--rate", "250", "--first-stance", "right",
+              "--out", os.path.join(scratch, "walk_cli.csv"))
+    with open(py_csv) as f, open(os.path.join(scratch, "walk_cli.csv")) as g:
+        check(run.returncode == 0 and f.read() == g.read(), "export(out=...csv) == CLI CSV, byte for byte")
+    try:
+        gaitopt.export(GAIT, steps=0)
+        check(False, "export(steps=0) raised nothing")
+    except ValueError as e:
+        check("steps >= 1" in str(e), f"export(steps=0): {str(e)!r}")
+
+
 def test_errors(binary, scratch):
     with open(GAIT) as f:
         text = f.read()
@@ -138,6 +163,7 @@ def main(binary):
         test_model(binary)
         test_evaluate(binary, scratch)
         test_optimize(binary, scratch)
+        test_export(binary, scratch)
         test_errors(binary, scratch)
     print(f"{len(failures)} failure(s)")
     return 1 if failures else 0
