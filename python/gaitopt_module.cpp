@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -13,6 +14,9 @@
 
 #include "gaitopt/export/controller_export.hpp"
 #include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/impact/impact_solver.hpp"
+#include "gaitopt/io/impact_report.hpp"
+#include "gaitopt/model/dynamics_pinned.hpp"
 #include "gaitopt/gait/summary.hpp"
 #include "gaitopt/gait/trajectory.hpp"
 #include "gaitopt/io/atomic_file.hpp"
@@ -80,6 +84,31 @@ class Robot {
     model_ = buildModel(loadRobot(path), options);
   }
   std::string name() const { return model_.robot.name; }
+  // The document of `gaitopt impact --q ... --qd ... --mu MU --model MODEL` (its input checks:
+  // foot 2 on the ground, arriving downward).
+  py::object impact(const std::vector<double>& q_list, const std::vector<double>& qd_list,
+                    double mu, const std::string& kind) const {
+    if (kind != "algebraic" && kind != "differential")
+      throw py::value_error("model: 'algebraic' or 'differential' expected, got '" + kind + "'");
+    if (!(mu >= 0.0) || !std::isfinite(mu)) throw py::value_error("mu: a finite value >= 0 expected");
+    const Vec5 q = toVec5(q_list, "q"), qd = toVec5(qd_list, "qd");
+    const PinnedTerms<double> t = pinnedTerms(model_, q, qd);
+    if (std::abs(t.foot2(1)) > 1e-9)
+      throw py::value_error("q: foot 2 height z2 = " + std::to_string(t.foot2(1)) +
+                            " m; an impact needs foot 2 on the ground (|z2| <= 1e-9 m)");
+    if (!(t.D2.row(1).dot(qd) < 0.0))
+      throw py::value_error("qd: foot 2 must arrive with V2z < 0");
+    ImpactOptions options;
+    options.mu = mu;
+    const ImpactResult r = solveImpactFromPinned(
+        model_, q, qd, kind == "algebraic" ? ImpactModelKind::Algebraic : ImpactModelKind::Differential,
+        options);
+    JsonWriter w;
+    w.beginObject();
+    writeImpactResultFields(w, r);
+    w.endObject();
+    return fromJson(w.str());
+  }
   // The document of `gaitopt model --q ... [--qd ...] [--qdd ...]`.
   py::object model(const std::vector<double>& q, const std::optional<std::vector<double>>& qd,
                    const std::optional<std::vector<double>>& qdd) const {
@@ -179,7 +208,11 @@ PYBIND11_MODULE(gaitopt, m) {
       .def_property_readonly("name", &Robot::name)
       .def("model", &Robot::model, py::arg("q"), py::arg("qd") = py::none(),
            py::arg("qdd") = py::none(),
-           "Model terms at (q, qd[, qdd]) as a dict: the JSON of `gaitopt model`");
+           "Model terms at (q, qd[, qdd]) as a dict: the JSON of `gaitopt model`")
+      .def("impact", &Robot::impact, py::arg("q"), py::arg("qd"), py::arg("mu"),
+           py::arg("model") = "algebraic",
+           "Rigid impact of foot 2 at the pinned state (q, qd) as a dict: the JSON of "
+           "`gaitopt impact` (every consistent solution)");
   m.def("evaluate", &evaluate, py::arg("gait"), py::arg("sample_rate") = py::none(),
         "Evaluate a gait file: summary.json as a dict, plus 'trajectory' (numpy arrays by "
         "trajectory.csv column, None for an undefined step)");

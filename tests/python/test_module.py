@@ -132,6 +132,30 @@ def test_export(binary, scratch):
         check("steps >= 1" in str(e), f"export(steps=0): {str(e)!r}")
 
 
+def test_impact(binary):
+    """Robot.impact on the pre-impact state of the shipped impact gait = `gaitopt impact`."""
+    gait = os.path.join(ROOT, "configs", "gait", "chevallereau_aoustin_0.75_impact.yaml")
+    robot = os.path.join(ROOT, "configs", "robot", "rabbit_chevallereau_aoustin.yaml")
+    t = gaitopt.evaluate(gait)["trajectory"]
+    i = np.flatnonzero(t["phase"] == "SS")[-1]  # touchdown: the swing foot arrives downward
+    q = [t[k][i] for k in ("alpha", "delta1", "delta2", "delta3", "delta4")]
+    qd = [t[k][i] for k in ("alphad", "delta1d", "delta2d", "delta3d", "delta4d")]
+    r = gaitopt.Robot(robot)
+    for model in ("algebraic", "differential"):
+        run = cli(binary, "impact", "--robot", robot, "--q=" + ",".join(repr(float(x)) for x in q),
+                  "--qd=" + ",".join(repr(float(x)) for x in qd), "--mu", "0.7", "--model", model)
+        check(run.returncode == 0, f"gaitopt impact --model {model}: exit code {run.returncode} {run.stderr}")
+        result = r.impact(q, qd, 0.7, model=model)
+        check(run.returncode == 0 and result == json.loads(run.stdout),
+              f"Robot.impact(model={model}) == gaitopt impact JSON")
+        check(len(result["solutions"]) >= 1, f"Robot.impact(model={model}): a solution")
+    try:
+        r.impact(q, [0.0] * 5, 0.7)
+        check(False, "impact(qd = 0) raised nothing")
+    except ValueError as e:
+        check("V2z < 0" in str(e), f"impact(qd = 0): {str(e)!r}")
+
+
 def test_errors(binary, scratch):
     with open(GAIT) as f:
         text = f.read()
@@ -164,6 +188,7 @@ def main(binary):
         test_evaluate(binary, scratch)
         test_optimize(binary, scratch)
         test_export(binary, scratch)
+        test_impact(binary)
         test_errors(binary, scratch)
     print(f"{len(failures)} failure(s)")
     return 1 if failures else 0
