@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <filesystem>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -14,6 +15,7 @@
 
 #include "gaitopt/export/controller_export.hpp"
 #include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/ident/diagnose.hpp"
 #include "gaitopt/impact/impact_solver.hpp"
 #include "gaitopt/io/impact_report.hpp"
 #include "gaitopt/model/dynamics_pinned.hpp"
@@ -22,6 +24,7 @@
 #include "gaitopt/io/atomic_file.hpp"
 #include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/gait_file.hpp"
+#include "gaitopt/io/measured_data.hpp"
 #include "gaitopt/io/model_report.hpp"
 #include "gaitopt/io/optimize_config.hpp"
 #include "gaitopt/io/optimize_output.hpp"
@@ -192,6 +195,44 @@ py::dict exportGait(const std::string& gait_path, int steps, double rate,
   return result;
 }
 
+// As `gaitopt diagnose --robot R --data D [--holdout K] [--out DIR]`: diagnosis.json as a
+// dict plus "report" (report.md), "residuals_csv" and "extended_robot_yaml" (texts); the four
+// files are written into `out` when given.
+py::dict diagnoseData(const std::string& robot_path, const std::string& data_path, int holdout,
+                      const std::optional<std::string>& out) {
+  const RobotParams robot = loadRobot(robot_path);
+  const MeasuredData data = readMeasuredCsv(data_path);
+  DiagnoseOptions options;
+  options.holdout = holdout;
+  std::string json, csv, report, yaml;
+  {
+    py::gil_scoped_release release;
+    Diagnosis d;
+    try {
+      d = diagnose(robot, ModelOptions{}, data, options);
+    } catch (const std::invalid_argument& e) {
+      throw py::value_error(std::string("holdout: ") + e.what());
+    }
+    json = diagnosisJson(d);
+    csv = residualsCsv(data, d);
+    report = diagnosisReport(d);
+    yaml = extendedRobotYaml(robot_path, d.extended_robot);
+    if (out) {
+      std::filesystem::create_directories(*out);
+      const std::filesystem::path dir(*out);
+      writeFileAtomically((dir / "diagnosis.json").string(), json);
+      writeFileAtomically((dir / "residuals.csv").string(), csv);
+      writeFileAtomically((dir / "report.md").string(), report);
+      writeFileAtomically((dir / "extended_robot.yaml").string(), yaml);
+    }
+  }
+  py::dict result = fromJson(json);
+  result["report"] = report;
+  result["residuals_csv"] = csv;
+  result["extended_robot_yaml"] = yaml;
+  return result;
+}
+
 }  // namespace
 }  // namespace gaitopt
 
@@ -219,6 +260,11 @@ PYBIND11_MODULE(gaitopt, m) {
   m.def("optimize", &optimize, py::arg("config"), py::arg("out") = py::none(),
         "Optimise as `gaitopt optimize --config CONFIG`: summary.json as a dict, plus "
         "'trajectory' and 'gait_yaml'; writes the files into `out` when given");
+  m.def("diagnose", &diagnoseData, py::arg("robot"), py::arg("data"), py::arg("holdout") = 3,
+        py::arg("out") = py::none(),
+        "Diagnose a robot model on measured data as `gaitopt diagnose`: diagnosis.json as a "
+        "dict plus 'report', 'residuals_csv' and 'extended_robot_yaml' (texts); writes the four "
+        "files into `out` when given");
   m.def("export", &exportGait, py::arg("gait"), py::arg("steps") = 10, py::arg("rate") = 1000.0,
         py::arg("first_stance") = "left", py::arg("format") = "csv", py::arg("out") = py::none(),
         "Export N steps for a controller as `gaitopt export`: the JSON document as a dict "

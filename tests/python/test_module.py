@@ -156,6 +156,31 @@ def test_impact(binary):
         check("V2z < 0" in str(e), f"impact(qd = 0): {str(e)!r}")
 
 
+def test_diagnose(binary, scratch):
+    """diagnose() on synthetic data with a known torque offset = `gaitopt diagnose`."""
+    data, cli_out, py_out = (os.path.join(scratch, n) for n in ("synth.csv", "diag_cli", "diag_py"))
+    run = cli(binary, "synth", "--robot", ROBOT, "--gait", GAIT, "--steps", "12", "--seed", "5",
+              "--effect", "torque_offset@knee_left=-3", "--out", data)
+    check(run.returncode == 0, f"gaitopt synth exit code {run.returncode} {run.stderr}")
+    run = cli(binary, "diagnose", "--robot", ROBOT, "--data", data, "--out", cli_out)
+    check(run.returncode == 0, f"gaitopt diagnose exit code {run.returncode} {run.stderr}")
+    result = gaitopt.diagnose(ROBOT, data, out=py_out)
+    texts = {k: result.pop(k) for k in ("report", "residuals_csv", "extended_robot_yaml")}
+    with open(os.path.join(cli_out, "diagnosis.json")) as f:
+        check(result == json.load(f), "diagnose(): dict == CLI diagnosis.json")
+    for key, name in (("report", "report.md"), ("residuals_csv", "residuals.csv"),
+                      ("extended_robot_yaml", "extended_robot.yaml")):
+        with open(os.path.join(cli_out, name)) as f, open(os.path.join(py_out, name)) as g:
+            text = f.read()
+            check(texts[key] == text and g.read() == text, f"diagnose(): {key} == CLI {name}, file too")
+    check("a torque-sensor offset of -3" in texts["report"], "diagnose(): the offset found")
+    try:
+        gaitopt.diagnose(ROBOT, data, holdout=1)
+        check(False, "diagnose(holdout=1) raised nothing")
+    except ValueError as e:
+        check("holdout" in str(e), f"diagnose(holdout=1): {str(e)!r}")
+
+
 def test_errors(binary, scratch):
     with open(GAIT) as f:
         text = f.read()
@@ -189,6 +214,7 @@ def main(binary):
         test_optimize(binary, scratch)
         test_export(binary, scratch)
         test_impact(binary)
+        test_diagnose(binary, scratch)
         test_errors(binary, scratch)
     print(f"{len(failures)} failure(s)")
     return 1 if failures else 0
