@@ -10,7 +10,7 @@ GAITOPT_PACKAGES=(
   build-essential cmake pkg-config
   libeigen3-dev coinor-libipopt-dev libnlopt-cxx-dev libyaml-cpp-dev libcli11-dev catch2
   libssl-dev libmujoco-dev liburdfdom-dev libsundials-dev
-  git python3 python3-numpy python3-matplotlib pybind11-dev python3-pybind11 python3-dev
+  git python3 python3-numpy python3-matplotlib python3-pil pybind11-dev python3-pybind11 python3-dev
   clang libclang-rt-14-dev  # libFuzzer harnesses (scripts/fuzz.sh, CI smoke run)
 )
 

@@ -8,6 +8,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <system_error>
+#include <unistd.h>
+
+#include "gaitopt/gait/summary.hpp"
+#include "gaitopt/opt/gait_problem.hpp"
 
 namespace gaitopt::cli {
 
@@ -69,6 +73,79 @@ std::optional<double> criterionOf(const OptimizationResult& r, Criterion c) {
 std::string criterionText(const OptimizationResult& r, Criterion c, const char* format) {
   const std::optional<double> v = criterionOf(r, c);
   return v ? shortNumber(*v, format) : std::string("n/a");
+}
+
+const char* criterionUnit(Criterion c) { return c == Criterion::Torque ? "N^2*m*s" : "J/m"; }
+
+std::string progressText(const GaitEvaluator& ev, const GaitEvaluation<double>& e, Criterion c) {
+  std::string text;
+  if (e.motion_computed)
+    text = std::string(criterionName(c)) + " " + shortNumber(criterionValue(e, c), "%.1f") + " " +
+           criterionUnit(c);
+  else
+    text = std::string(criterionName(c)) + " n/a (step undefined at level " +
+           std::to_string(e.failed_level) + ")";
+  // The worst entry relative to its group's typical magnitude, as the optimiser weighs them.
+  int worst_group = -1;
+  double worst_scaled = 0.0, worst_value = 0.0;
+  const bool evaluated = static_cast<int>(e.g.size()) == ev.layout().size();
+  for (int id = 0; evaluated && id < kNumConstraintGroups; ++id) {
+    const ConstraintGroup& g = ev.layout()[id];
+    for (int k = g.offset; k < g.offset + g.count; ++k) {
+      if (e.state[k] == ConstraintState::NotComputed || !(e.g[k] > 0.0)) continue;
+      const double scaled = e.g[k] / constraintScale(ev.layout(), ev.model(), k);
+      if (scaled > worst_scaled) {
+        worst_scaled = scaled;
+        worst_value = e.g[k];
+        worst_group = id;
+      }
+    }
+  }
+  if (worst_group < 0) return text + "  constraints hold";
+  return text + "  worst " + ev.layout()[worst_group].name + " +" +
+         shortNumber(worst_value, "%.3g") + " " + constraintGroupUnit(worst_group);
+}
+
+std::string elapsedAndRemaining(double elapsed_s, int done, int total) {
+  std::string s = "elapsed " + shortNumber(elapsed_s, "%.1f") + " s";
+  if (done > 0 && done < total)
+    s += ", remaining ~" + shortNumber(elapsed_s / done * (total - done), "%.1f") + " s";
+  return s;
+}
+
+OptimizeProgress::OptimizeProgress(const GaitEvaluator& evaluator, Criterion c, ProgressMode mode,
+                                   std::ostream& out)
+    : evaluator_(evaluator),
+      criterion_(c),
+      in_place_(mode == ProgressMode::Auto && &out == &std::cout && isatty(STDOUT_FILENO)),
+      out_(out) {}
+
+void OptimizeProgress::report(const std::string& stage, const GaitParameters& p, int iteration) {
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const std::string line = "[" + stage + "] iter " + std::to_string(iteration) + "  " +
+                           progressText(evaluator_, evaluator_.evaluate(p), criterion_) +
+                           "  elapsed " + shortNumber(elapsed, "%.1f") + " s";
+  if (!in_place_) {
+    out_ << line << "\n" << std::flush;
+    return;
+  }
+  if (open_line_ && stage != stage_) out_ << "\n";  // the last line of each stage stays
+  out_ << "\r" << line << "\033[K" << std::flush;
+  stage_ = stage;
+  open_line_ = true;
+}
+
+void OptimizeProgress::endLine() {
+  if (open_line_) out_ << "\n" << std::flush;
+  open_line_ = false;
+  stage_.clear();
+}
+
+std::function<void(const std::string&, const GaitParameters&, int)> OptimizeProgress::hook() {
+  return [this](const std::string& stage, const GaitParameters& p, int it) {
+    report(stage, p, it);
+  };
 }
 
 }  // namespace gaitopt::cli

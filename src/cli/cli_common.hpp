@@ -2,7 +2,9 @@
 // Helpers shared by the `gaitopt` subcommands: number formatting, the --out check and the
 // criterion of an optimisation result.
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <functional>
+#include <ostream>
 #include <optional>
 #include <string>
 
@@ -35,5 +37,42 @@ std::optional<double> criterionOf(const OptimizationResult& r, Criterion c);
 
 // criterionOf formatted with `format`, or "n/a".
 std::string criterionText(const OptimizationResult& r, Criterion c, const char* format = "%.6g");
+
+// Unit of a criterion's value: "N^2*m*s" for C_Gamma (3.28), "J/m" for C_E and W.
+const char* criterionUnit(Criterion c);
+
+// One progress text in the user's units: the criterion with its unit and the worst violated
+// constraint (largest value relative to its group's scale) with its name, value and unit, e.g.
+// "C_Gamma 9122.8 N^2*m*s  worst torque_envelope_ss +3.2 N m". "constraints hold" when none is
+// violated; for a step without motion, the failed level.
+std::string progressText(const GaitEvaluator& evaluator, const GaitEvaluation<double>& e,
+                         Criterion c);
+
+// "elapsed 12.3 s, remaining ~45.6 s" after `done` of `total` items in `elapsed_s` seconds.
+std::string elapsedAndRemaining(double elapsed_s, int done, int total);
+
+// How progress lines are shown: on a terminal one line updated in place per stage (`auto`),
+// else (or `lines`) one line per report.
+enum class ProgressMode { Auto, Lines };
+
+// Progress of optimisations for SolverSettings::on_iteration: evaluates the solver's point
+// and prints "[stage] iter k  <progressText>  elapsed t s", one final line per stage.
+class OptimizeProgress {
+ public:
+  OptimizeProgress(const GaitEvaluator& evaluator, Criterion c, ProgressMode mode,
+                   std::ostream& out);
+  void report(const std::string& stage, const GaitParameters& p, int iteration);
+  void endLine();  // closes an updating line before other output
+  std::function<void(const std::string&, const GaitParameters&, int)> hook();
+
+ private:
+  const GaitEvaluator& evaluator_;
+  Criterion criterion_;
+  bool in_place_;
+  std::ostream& out_;
+  std::string stage_;
+  bool open_line_ = false;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
 
 }  // namespace gaitopt::cli

@@ -1,6 +1,7 @@
 // `gaitopt export`: N steps of a gait for a joint-level controller, as CSV or JSON.
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "cli_common.hpp"
@@ -11,9 +12,40 @@
 namespace gaitopt::cli {
 namespace {
 
+
+// The ramped walk's rows, or nothing (message printed) when a sample violates a constraint.
+std::optional<std::vector<ExportRow>> rampedExport(const GaitEvaluator& evaluator,
+                                                   const GaitParameters& p,
+                                                   const GaitEvaluation<double>& e,
+                                                   const Model& model, ExportRequest& req, bool stop) {
+  std::vector<WalkStepMotion> walk;
+  try {
+    walk = rampedWalk(evaluator, p, e, {req.ramp_steps, req.ramp_steps, req.steps, stop});
+  } catch (const InfeasibleRamp& error) {
+    std::cerr << "gaitopt: error: --ramp: " << error.what()
+              << (stop ? " (--ramp-out none exports the ramp-in alone)" : "")
+              << "; nothing exported\n";
+    return std::nullopt;
+  }
+  for (const WalkStepMotion& s : walk)
+    if (s.single_support) req.ramp_rates.push_back(s.evaluation->motion.alphadot_iSS);
+  const std::vector<PlannedSample> samples = sampleWalk(evaluator, walk, req.rate);
+  const auto gait = std::make_shared<const GaitEvaluation<double>>(e);
+  const std::vector<ConstraintMaximum> bad = violations(
+      sampleConstraintMaxima(evaluator, walk, samples), gaitBaseline(evaluator, gait));
+  for (const ConstraintMaximum& c : bad) {
+    std::cerr << "gaitopt: error: --ramp: constraint " << c.name << " violated by "
+              << shortNumber(c.value, "%.4g") << " " << c.unit << " at t = "
+              << shortNumber(c.t, "%.4f") << " s (step " << c.step << ")\n";
+  }
+  if (!bad.empty()) return std::nullopt;
+  return exportWalk(model, samples, req.first_stance);
+}
+
 struct ExportArgs {
-  std::string gait, out, format = "csv", first_stance = "left";
-  int steps = 10;
+  std::string gait, out, format = "csv", first_stance = "left", ramp_out = "stop";
+  int steps = 10, ramp_steps = 2;
+  bool ramp = false;
   double rate = 1000.0;
 };
 
@@ -40,6 +72,17 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--first-stance", args->first_stance, "Physical stance leg of step 0")
       ->capture_default_str()
       ->check(CLI::IsMember({"left", "right"}));
+  cmd->add_flag("--ramp", args->ramp,
+                 "Start from standing still and end standing: ramp-in and ramp-out steps "
+                 "around the N cyclic steps, every sample checked against the constraints "
+                 "(exit 3 if one is violated)");
+  cmd->add_option("--ramp-steps", args->ramp_steps, "Steps of the ramp-in and of the ramp-out")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 1000));
+  cmd->add_option("--ramp-out", args->ramp_out,
+                  "stop: ramp out to standing still; none: end with the last cyclic step")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"stop", "none"}));
   cmd->callback([args, &exit_code]() {
     const GaitFile gait = loadGaitFile(args->gait);
     requireFileOutput(args->out);
@@ -57,11 +100,25 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
     req.first_stance = args->first_stance == "left" ? Leg::Left : Leg::Right;
     // The feedforward overcomes the robot file's whole friction, not only the optimised part.
     const Model model = buildModel(gait.robot, gait.model_options);
-    const std::vector<ExportRow> rows = exportTrajectory(evaluator, e, model, req);
+    req.ramp_steps = args->ramp ? args->ramp_steps : 0;
+    std::vector<ExportRow> rows;
+    if (args->ramp) {
+      const std::optional<std::vector<ExportRow>> ramped =
+          rampedExport(evaluator, gait.parameters, e, model, req, args->ramp_out == "stop");
+      if (!ramped) {
+        exit_code = kExitUndefined;
+        return;
+      }
+      rows = *ramped;
+    } else {
+      rows = exportTrajectory(evaluator, e, model, req);
+    }
     const ExportMetadata meta = exportMetadata(gait, e, req);
     writeFileAtomically(args->out, args->format == "csv" ? exportCsv(meta, rows)
                                                          : exportJson(meta, rows, e));
-    std::cout << "export: " << args->steps << " steps, " << rows.size() << " samples at "
+    std::cout << "export: " << args->steps << " steps"
+              << (args->ramp ? " + ramp of " + std::to_string(args->ramp_steps) + " in/out" : "")
+              << ", " << rows.size() << " samples at "
               << shortNumber(args->rate) << " Hz, speed " << shortNumber(e.speed, "%.4g")
               << " m/s -> " << args->out << "\n";
     exit_code = 0;

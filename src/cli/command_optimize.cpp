@@ -1,5 +1,6 @@
 // `gaitopt optimize`: an optimal walking step from an optimiser configuration file →
 // summary.json, gait.yaml and trajectory.csv; optionally from K seeded random starts.
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <iostream>
@@ -31,7 +32,8 @@ struct OptimizeArgs {
   std::string out;
   int random_starts = 0;  // 0: one run from the configured initial guess
   std::uint64_t seed = 1;
-  bool quiet = false;
+  bool quiet = false, verbose = false;
+  std::string progress = "auto";
 };
 
 struct Run {
@@ -159,7 +161,13 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
                   "Seed of the random starts (std::mt19937_64), 0 to 2^53-1; default 1")
       ->check(CLI::Range(std::uint64_t{0}, kMaxSeed))
       ->needs(starts);
-  cmd->add_flag("--quiet", args->quiet, "No solver progress lines");
+  cmd->add_flag("--quiet", args->quiet, "No progress lines");
+  cmd->add_flag("--verbose", args->verbose,
+                "Also the solver's own lines (scaled objective and violation)");
+  cmd->add_option("--progress", args->progress,
+                  "auto: on a terminal one line per stage updated in place; lines: every line")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "lines"}));
   cmd->callback([args, &exit_code]() {
     // Everything that can fail on bad input happens before the output directory is touched.
     OptimizeConfig config = loadOptimizeConfig(args->config);
@@ -170,20 +178,33 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
     const GaitParameters initial = configuredInitialGuess(config, evaluator.model());
     std::ostream* log = args->quiet ? nullptr : &std::cout;
     const Criterion criterion = config.criterion;
+    // Progress in user units from the solver's iteration hook; the solver's own (scaled) lines
+    // only with --verbose.
+    OptimizeProgress progress_lines(
+        evaluator, criterion, args->progress == "lines" ? ProgressMode::Lines : ProgressMode::Auto,
+        std::cout);
+    if (!args->quiet) config.solver.on_iteration = progress_lines.hook();
+    if (!args->verbose) config.solver.print_every = 0;
+    const auto start_time = std::chrono::steady_clock::now();
 
     std::vector<Run> runs;
     if (args->random_starts == 0) {
       runs.push_back({0, optimizeGait(evaluator, optimizationRequest(config, initial), log)});
+      progress_lines.endLine();
     } else {
       std::mt19937_64 rng(args->seed);
       for (int k = 1; k <= args->random_starts; ++k) {
         const GaitParameters start = randomStart(initial, rng, config.options.parameterisation);
         if (log) *log << "--- random start " << k << "/" << args->random_starts << "\n";
         runs.push_back({k, optimizeGait(evaluator, optimizationRequest(config, start), log)});
+        progress_lines.endLine();
         if (log) {
-          *log << "--- random start " << k << ": " << runs.back().result.status << ", "
-               << criterionName(criterion) << " " << criterionText(runs.back().result, criterion)
-               << "\n";
+          const double elapsed =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+          *log << "--- random start " << k << "/" << args->random_starts << ": "
+               << runs.back().result.status << ", "
+               << progressText(evaluator, runs.back().result.evaluation, criterion) << ", "
+               << elapsedAndRemaining(elapsed, k, args->random_starts) << "\n";
         }
       }
     }

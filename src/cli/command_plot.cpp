@@ -79,18 +79,21 @@ void registerPlotCommand(CLI::App& app, int& exit_code) {
       "plot",
       "Draw a figure from a run directory with scripts/plot/KIND.py (/usr/bin/python3, "
       "matplotlib): stick, torques, reactions, phase (a step run: summary.json + "
-      "trajectory.csv) or sweep (sweep.csv). Writes RUN_DIR/KIND.png unless --out is given. "
+      "trajectory.csv) or sweep (sweep.csv); animate draws an export CSV (gaitopt export) as "
+      "an animated GIF. Writes RUN_DIR/KIND.png unless --out is given. "
       "Scripts directory: $GAITOPT_PLOT_SCRIPTS, else the source tree's scripts/plot.");
   cmd->add_option("kind", args->kind, "Figure: the name of a script in the scripts directory")
       ->required();
-  cmd->add_option("run_dir", args->run_dir, "Directory written by gaitopt evaluate, optimize or sweep")
+  cmd->add_option("run_dir", args->run_dir, "Directory written by gaitopt evaluate, optimize or sweep (animate: an export CSV)")
       ->required();
-  cmd->add_option("--out", args->out, "Output file, .png or .svg (default RUN_DIR/KIND.png)")
+  cmd->add_option("--out", args->out,
+                  "Output file, .png or .svg (.gif for animate; default RUN_DIR/KIND.png)")
       ->check(CLI::Validator(
           [](std::string& s) {
             const std::string ext = fs::path(s).extension().string();
-            return ext == ".png" || ext == ".svg" ? std::string()
-                                                  : "must end in .png or .svg: " + s;
+            return ext == ".png" || ext == ".svg" || ext == ".gif"
+                       ? std::string()
+                       : "must end in .png or .svg (.gif for animate): " + s;
           },
           "FILE"));
   cmd->callback([args, &exit_code]() {

@@ -137,12 +137,13 @@ void registerSweep(CLI::App& app, int& exit_code) {
     const int decimals = sweepFolderDecimals(speeds);  // of the whole list: shards agree
     const fs::path out(args->out), stage(staged.path());
 
-    // "v=<speed> m/s  status <status>  <criterion> <value>  elapsed <time> s"
+    // "v=<speed> m/s  status <status>  <criterion> <value> <unit>  worst <constraint> +<value>
+    // <unit>  elapsed <time> s, remaining ~<time> s"
     const auto progressLine = [&](const SweepProgress& p) {
       const OptimizationResult& r = p.point.result;
       return "v=" + shortNumber(p.point.speed, "%.3f") + " m/s  status " + r.status + "  " +
-             criterionName(criterion) + " " + criterionText(r, criterion, "%.1f") +
-             "  elapsed " + shortNumber(p.elapsed_s, "%.1f") + " s";
+             progressText(evaluator, r.evaluation, criterion) + "  " +
+             elapsedAndRemaining(p.elapsed_s, p.done, p.total);
     };
     auto progress = [&](const SweepProgress& p) {
       const OptimizationResult& r = p.point.result;

@@ -210,28 +210,24 @@ ExportRow exportRow(const Model& model, const TrajectoryRow& r, int step, Leg st
   return e;
 }
 
+std::vector<ExportRow> exportWalk(const Model& model, const std::vector<PlannedSample>& samples,
+                                  Leg first_stance) {
+  std::vector<ExportRow> rows;
+  rows.reserve(samples.size());
+  for (const PlannedSample& s : samples)
+    rows.push_back(exportRow(model, s.row, s.step,
+                             s.leg1_is_first_stance ? first_stance : otherLeg(first_stance),
+                             s.foot1_x, s.t));
+  return rows;
+}
+
 std::vector<ExportRow> exportTrajectory(const GaitEvaluator& ev, const GaitEvaluation<double>& e,
                                         const Model& model, const ExportRequest& req) {
   if (req.steps < 1 || !(req.rate > 0.0))
     throw std::invalid_argument("exportTrajectory: steps must be >= 1 and rate > 0");
-  const GaitMotion<double>& mo = e.motion;
-  const double T = mo.T_SS + mo.T_DS;
-  const long n = static_cast<long>(std::floor(req.steps * T * req.rate + 1e-9));
-  std::vector<ExportRow> rows;
-  for (long i = 0; i <= n; ++i) {
-    const double t = static_cast<double>(i) / req.rate;
-    const int step = std::min(req.steps - 1, static_cast<int>(std::floor(t / T + 1e-12)));
-    const double local = std::max(0.0, t - step * T);
-    const Leg stance = step % 2 == 0 ? req.first_stance : otherLeg(req.first_stance);
-    const bool ss = local < mo.T_SS;
-    const TrajectoryRow r =
-        ss ? sampleTrajectoryAt(ev, e, Phase::SingleSupport, local)
-           : sampleTrajectoryAt(ev, e, Phase::DoubleSupport, std::min(local - mo.T_SS, mo.T_DS));
-    // In DS leg 1 is the front leg, the next step's stance leg, whose foot is d further on.
-    const Leg leg1 = ss ? stance : otherLeg(stance);
-    rows.push_back(exportRow(model, r, step, leg1, mo.d * (ss ? step : step + 1), t));
-  }
-  return rows;
+  const auto step = std::make_shared<const GaitEvaluation<double>>(e);
+  const std::vector<WalkStepMotion> walk(req.steps, WalkStepMotion{step, true});
+  return exportWalk(model, sampleWalk(ev, walk, req.rate), req.first_stance);
 }
 
 ExportMetadata exportMetadata(const GaitFile& gait, const GaitEvaluation<double>& e,
@@ -253,6 +249,13 @@ ExportMetadata exportMetadata(const GaitFile& gait, const GaitEvaluation<double>
   m["gear_ratio"] = formatDouble(gait.robot.gear_ratio);
   m["friction"] = "robot file Coulomb (smooth sign tanh(w/" +
                   formatDouble(gait.model_options.friction_smoothing) + ")) and viscous";
+  if (req.ramp_steps > 0) {
+    m["ramp_steps"] = std::to_string(req.ramp_steps);
+    std::string rates;
+    for (double a : req.ramp_rates)
+      rates += (rates.empty() ? "" : " ") + formatDouble(a);
+    m["ramp_alphad_iSS"] = rates + " (rad/s; step 0 is the standing start, DS only)";
+  }
   const auto names = gait.options.parameterisation.names();
   for (std::size_t i = 0; i < names.size(); ++i)
     m["parameter." + names[i]] = formatDouble(gait.parameters(static_cast<int>(i)));

@@ -12,27 +12,6 @@ namespace gaitopt {
 namespace {
 
 // Unit of the g values of each constraint group (g ≤ 0 when satisfied).
-const char* groupUnit(int id) {
-  switch (id) {
-    case kReachMaxIDS: case kReachMinIDS: case kReachMaxFDS: case kReachMinFDS:
-    case kReachMaxInt: case kReachMinInt: case kDsReachMax: case kDsReachMin:
-      return "m^2";
-    case kAlphaOrderDS: case kAlphaOrderSS: case kTibiaFront: case kTibiaRear:
-    case kJointLimitsSS: case kJointLimitsDS:
-      return "rad";
-    case kFPositive: return "kg m^2";
-    case kAlphadotNegative: case kDsMonotone: return "rad/s";
-    case kNoFallBack: return "(rad/s)^2";
-    case kKappaPositive: return "1";
-    case kTorqueSS: case kTorqueDS: return "N m";
-    case kFrictionConeSS: case kFrictionConeDS: case kNormalForceSS: case kNormalForceDS:
-      return "N";
-    case kClearance: return "m";
-    case kImpactArrival: case kImpactConsistency: return "m/s per rad/s";
-    case kImpactRateRatio: case kImpactOrbit: return "1";
-    default: return "";
-  }
-}
 
 void numberOrNull(JsonWriter& w, bool available, double v) {
   if (available && std::isfinite(v)) {
@@ -95,6 +74,28 @@ void writeImpactSummary(JsonWriter& w, const GaitEvaluator& ev, const GaitEvalua
 }
 
 }  // namespace
+
+const char* constraintGroupUnit(int id) {
+  switch (id) {
+    case kReachMaxIDS: case kReachMinIDS: case kReachMaxFDS: case kReachMinFDS:
+    case kReachMaxInt: case kReachMinInt: case kDsReachMax: case kDsReachMin:
+      return "m^2";
+    case kAlphaOrderDS: case kAlphaOrderSS: case kTibiaFront: case kTibiaRear:
+    case kJointLimitsSS: case kJointLimitsDS:
+      return "rad";
+    case kFPositive: return "kg m^2";
+    case kAlphadotNegative: case kDsMonotone: return "rad/s";
+    case kNoFallBack: return "(rad/s)^2";
+    case kKappaPositive: return "1";
+    case kTorqueSS: case kTorqueDS: return "N m";
+    case kFrictionConeSS: case kFrictionConeDS: case kNormalForceSS: case kNormalForceDS:
+      return "N";
+    case kClearance: return "m";
+    case kImpactArrival: case kImpactConsistency: return "m/s per rad/s";
+    case kImpactRateRatio: case kImpactOrbit: return "1";
+    default: return "";
+  }
+}
 
 ConstraintGroupSummary summarizeConstraintGroup(const ConstraintGroup& group,
                                                 const GaitEvaluation<double>& e) {
@@ -185,7 +186,7 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
     w.key("equation").value(g.equation);
     // Without DS, α̇_iSS² ≥ ε² is the constraint (gait/impact_landing.hpp).
     const bool squared = id == kAlphadotNegative && !o.parameterisation.hasDoubleSupport();
-    w.key("unit").value(squared ? "(rad/s)^2" : groupUnit(id));
+    w.key("unit").value(squared ? "(rad/s)^2" : constraintGroupUnit(id));
     w.key("value");
     numberOrNull(w, has_value, s.value);
     w.key("satisfied");

@@ -42,7 +42,8 @@ class TnlpAdapter : public Ipopt::TNLP {
     return true;
   }
   bool eval_f(Index n, const Number* x, bool, Number& f) override {
-    return problem_.cost(VectorX(Eigen::Map<const VectorX>(x, n)), f);
+    last_x_ = Eigen::Map<const VectorX>(x, n);
+    return problem_.cost(last_x_, f);
   }
   bool eval_grad_f(Index n, const Number* x, bool, Number* grad) override {
     VectorX g;
@@ -83,6 +84,7 @@ class TnlpAdapter : public Ipopt::TNLP {
                              Number inf_du, Number, Number, Number, Number, Number, Index,
                              const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
     solution_.iterations = iter;
+    if (settings_.on_iteration && last_x_.size() > 0) settings_.on_iteration(last_x_, iter);
     if (settings_.log && settings_.print_every > 0 && iter % settings_.print_every == 0) {
       char line[160];
       std::snprintf(line, sizeof line, "[%s] iter %4d  objective %.8e  violation %.3e  dual %.3e%s\n",
@@ -108,6 +110,7 @@ class TnlpAdapter : public Ipopt::TNLP {
   NlpProblem& problem_;
   const NlpSettings& settings_;
   NlpSolution solution_;
+  VectorX last_x_;
 };
 
 // Integer-looking values as integers, other numbers as reals, the rest as strings; the key of

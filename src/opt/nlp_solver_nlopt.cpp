@@ -50,6 +50,7 @@ double objective(unsigned n, const double* x, double* grad, void* data) {
   ++c->evaluations;
   c->last_x = v;
   c->last_f = f;
+  if (c->settings.on_iteration) c->settings.on_iteration(v, c->evaluations);
   if (c->settings.log && c->settings.print_every > 0 && c->evaluations % c->settings.print_every == 0)
     *c->settings.log << "[" << c->settings.label << "] eval " << c->evaluations << "  objective "
                      << f << "  violation " << c->violation << "\n";

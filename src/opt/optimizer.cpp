@@ -30,6 +30,8 @@ NlpSolution solve(NlpProblem& problem, const SolverSettings& s, const std::strin
   ns.label = label;
   ns.print_every = s.print_every;
   ns.log = log;
+  if (s.on_iteration)
+    ns.on_iteration = [&s, &label](const VectorX& x, int it) { s.on_iteration(label, x, it); };
   switch (s.backend) {
     case Backend::NloptSlsqp: return solveWithNlopt(problem, ns, NloptMethod::Slsqp);
     case Backend::NloptCobyla: return solveWithNlopt(problem, ns, NloptMethod::Cobyla);

@@ -567,6 +567,36 @@ TEST_CASE("optimize: the CLI writes the optimum, and evaluate reads it back", "[
   CHECK(std::abs(*speed_error) <= 1e-6);
 }
 
+TEST_CASE("optimize --progress lines: stage, criterion in N^2*m*s, worst constraint by name",
+          "[optimize][progress]") {
+  const std::string out = scratch().fresh("out_progress");
+  const CliRun run = runCli("optimize --config " + quoted(kDefaultConfig) + " --out " +
+                            quoted(out) + " --progress lines");
+  INFO(run.out << run.err);
+  REQUIRE(run.exit_code == 0);
+  std::vector<std::string> lines;
+  std::istringstream in(run.out);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("[", 0) == 0) lines.push_back(line);
+  REQUIRE(lines.size() >= 5);
+  bool named_violation = false;
+  for (const std::string& line : lines) {
+    CHECK_THAT(line, Contains("] iter ") && Contains("elapsed "));
+    CHECK((line.find(" N^2*m*s") != std::string::npos || line.find("C_Gamma n/a") != std::string::npos));
+    CHECK(line.find("objective") == std::string::npos);  // the solver's scaled lines: --verbose
+    named_violation = named_violation || line.find("  worst ") != std::string::npos;
+  }
+  CHECK(named_violation);  // the start violates constraints: their names are shown
+  // The last line is at the optimum: its criterion is the summary's, to the printed digits.
+  const std::string& last = lines.back();
+  const std::size_t at = last.find("C_Gamma ") + 8;
+  const double printed = std::stod(last.substr(at));
+  const std::optional<double> c = jsonNumber(readFile(out + "/summary.json"), "C_Gamma");
+  REQUIRE(c);
+  CHECK(printed == Approx(*c).epsilon(1e-3));
+  CHECK_THAT(last, Contains("constraints hold"));
+}
+
 TEST_CASE("optimize: the CLI rejects bad input without writing anything", "[optimize]") {
   const std::string out = scratch().fresh("out_bad");
   const std::string bad = scratch().write(configWith({{10, "  backend: snopt"}}));

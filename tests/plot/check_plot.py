@@ -20,6 +20,7 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 STEP_RUN = os.path.join(ROOT, "tests", "data", "sample_run")
 SWEEP_RUN = os.path.join(ROOT, "tests", "data", "sample_sweep")
+EXPORT = os.path.join(ROOT, "tests", "data", "sample_export.csv")  # gaitopt export, 2 steps, 50 Hz
 EXPECTED_SIZE = (1200, 700)  # FIG_SIZE (12 × 7 in) at 100 dpi
 
 
@@ -56,7 +57,39 @@ def check_command(binary, scratch):
           f"GAITOPT_PLOT_SCRIPTS: {result.stderr!r}")
 
 
+def check_animate(binary):
+    """animate on the shipped 2-step export (50 Hz): the GIF's size and frame count (one frame
+    per 1/25 s of the export's time), not blank; a run directory and a .png are refused."""
+    from PIL import Image
+
+    with open(EXPORT) as f:
+        t_end = float([line for line in f if not line.startswith("#")][-1].split(",")[0])
+    with tempfile.TemporaryDirectory(prefix="gaitopt_plot_animate_") as scratch:
+        gif = os.path.join(scratch, "walk.gif")
+        result = run(binary, "animate", EXPORT, "--out", gif)
+        check(result.returncode == 0, f"exit code {result.returncode}: {result.stderr}")
+        with Image.open(gif) as im:
+            frames = im.n_frames
+            check(im.format == "GIF" and im.size == (800, 450), f"GIF {im.format} {im.size} != (800, 450)")
+            im.seek(frames // 2)
+            grey = np.asarray(im.convert("L"), dtype=float) / 255.0
+        expected = int(np.floor(t_end * 25 + 1e-9)) + 1
+        print(f"animate: {frames} frames (expected {expected}), middle-frame variance {np.var(grey):.4f}")
+        check(frames == expected, f"{frames} frames, expected {expected}")
+        check(np.var(grey) > 0.005, "blank middle frame")
+        rejected = os.path.join(scratch, "rejected.gif")
+        result = run(binary, "animate", STEP_RUN, "--out", rejected)
+        check(result.returncode == 2 and f"{STEP_RUN}: a step run directory (summary.json), not an export file"
+              in result.stderr, f"run directory: {result.returncode} {result.stderr!r}")
+        result = run(binary, "animate", EXPORT, "--out", os.path.join(scratch, "walk.png"))
+        check(result.returncode == 2 and "must end in .gif" in result.stderr, f".png: {result.stderr!r}")
+        check(not os.path.exists(rejected), "a file was written for a rejected input")
+    return 0
+
+
 def main(binary, kind):
+    if kind == "animate":
+        return check_animate(binary)
     good, wrong, wrong_name = (SWEEP_RUN, STEP_RUN, "a step run directory") if kind == "sweep" \
         else (STEP_RUN, SWEEP_RUN, "a sweep directory")
     with tempfile.TemporaryDirectory(prefix=f"gaitopt_plot_{kind}_") as scratch:

@@ -107,6 +107,80 @@ def test_optimize(binary, scratch):
     check(os.path.exists(os.path.join(py_out, "gait.yaml")), "optimize(out=...) writes the files")
 
 
+def test_export(binary, scratch):
+    cli_json, py_csv = os.path.join(scratch, "walk_cli.json"), os.path.join(scratch, "walk_py.csv")
+    run = cli(binary, "export", "--gait", GAIT, "--steps", "3", "--rate", "250", "--format", "json",
+              "--first-stance", "right", "--out", cli_json)
+    check(run.returncode == 0, f"gaitopt export exit code {run.returncode}")
+    result = gaitopt.export(GAIT, steps=3, rate=250, first_stance="right", out=py_csv)
+    with open(cli_json) as f:
+        expected = json.load(f)
+    samples, expected_samples = result.pop("samples"), expected.pop("samples")
+    check(result == expected, "export(): metadata, units and phases == CLI JSON")
+    check(sorted(samples) == sorted(expected_samples) and all(
+        isinstance(samples[k], np.ndarray) and samples[k].tolist() == expected_samples[k]
+        for k in samples), "export(): every samples column == CLI JSON, as numpy arrays")
+    check(samples["step"][-1] == 2 and samples["stance"][0] == "right", "export(): 3 steps, right first")
+    run = cli(binary, "export", "--gait", GAIT, "--steps", "3", "--rate", "250", "--first-stance", "right",
+              "--out", os.path.join(scratch, "walk_cli.csv"))
+    with open(py_csv) as f, open(os.path.join(scratch, "walk_cli.csv")) as g:
+        check(run.returncode == 0 and f.read() == g.read(), "export(out=...csv) == CLI CSV, byte for byte")
+    try:
+        gaitopt.export(GAIT, steps=0)
+        check(False, "export(steps=0) raised nothing")
+    except ValueError as e:
+        check("steps >= 1" in str(e), f"export(steps=0): {str(e)!r}")
+
+
+def test_impact(binary):
+    """Robot.impact on the pre-impact state of the shipped impact gait = `gaitopt impact`."""
+    gait = os.path.join(ROOT, "configs", "gait", "chevallereau_aoustin_0.75_impact.yaml")
+    robot = os.path.join(ROOT, "configs", "robot", "rabbit_chevallereau_aoustin.yaml")
+    t = gaitopt.evaluate(gait)["trajectory"]
+    i = np.flatnonzero(t["phase"] == "SS")[-1]  # touchdown: the swing foot arrives downward
+    q = [t[k][i] for k in ("alpha", "delta1", "delta2", "delta3", "delta4")]
+    qd = [t[k][i] for k in ("alphad", "delta1d", "delta2d", "delta3d", "delta4d")]
+    r = gaitopt.Robot(robot)
+    for model in ("algebraic", "differential"):
+        run = cli(binary, "impact", "--robot", robot, "--q=" + ",".join(repr(float(x)) for x in q),
+                  "--qd=" + ",".join(repr(float(x)) for x in qd), "--mu", "0.7", "--model", model)
+        check(run.returncode == 0, f"gaitopt impact --model {model}: exit code {run.returncode} {run.stderr}")
+        result = r.impact(q, qd, 0.7, model=model)
+        check(run.returncode == 0 and result == json.loads(run.stdout),
+              f"Robot.impact(model={model}) == gaitopt impact JSON")
+        check(len(result["solutions"]) >= 1, f"Robot.impact(model={model}): a solution")
+    try:
+        r.impact(q, [0.0] * 5, 0.7)
+        check(False, "impact(qd = 0) raised nothing")
+    except ValueError as e:
+        check("V2z < 0" in str(e), f"impact(qd = 0): {str(e)!r}")
+
+
+def test_diagnose(binary, scratch):
+    """diagnose() on synthetic data with a known torque offset = `gaitopt diagnose`."""
+    data, cli_out, py_out = (os.path.join(scratch, n) for n in ("synth.csv", "diag_cli", "diag_py"))
+    run = cli(binary, "synth", "--robot", ROBOT, "--gait", GAIT, "--steps", "12", "--seed", "5",
+              "--effect", "torque_offset@knee_left=-3", "--out", data)
+    check(run.returncode == 0, f"gaitopt synth exit code {run.returncode} {run.stderr}")
+    run = cli(binary, "diagnose", "--robot", ROBOT, "--data", data, "--out", cli_out)
+    check(run.returncode == 0, f"gaitopt diagnose exit code {run.returncode} {run.stderr}")
+    result = gaitopt.diagnose(ROBOT, data, out=py_out)
+    texts = {k: result.pop(k) for k in ("report", "residuals_csv", "extended_robot_yaml")}
+    with open(os.path.join(cli_out, "diagnosis.json")) as f:
+        check(result == json.load(f), "diagnose(): dict == CLI diagnosis.json")
+    for key, name in (("report", "report.md"), ("residuals_csv", "residuals.csv"),
+                      ("extended_robot_yaml", "extended_robot.yaml")):
+        with open(os.path.join(cli_out, name)) as f, open(os.path.join(py_out, name)) as g:
+            text = f.read()
+            check(texts[key] == text and g.read() == text, f"diagnose(): {key} == CLI {name}, file too")
+    check("a torque-sensor offset of -3" in texts["report"], "diagnose(): the offset found")
+    try:
+        gaitopt.diagnose(ROBOT, data, holdout=1)
+        check(False, "diagnose(holdout=1) raised nothing")
+    except ValueError as e:
+        check("holdout" in str(e), f"diagnose(holdout=1): {str(e)!r}")
+
+
 def test_errors(binary, scratch):
     with open(GAIT) as f:
         text = f.read()
@@ -138,6 +212,9 @@ def main(binary):
         test_model(binary)
         test_evaluate(binary, scratch)
         test_optimize(binary, scratch)
+        test_export(binary, scratch)
+        test_impact(binary)
+        test_diagnose(binary, scratch)
         test_errors(binary, scratch)
     print(f"{len(failures)} failure(s)")
     return 1 if failures else 0

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "gaitopt/export/gait_ramp.hpp"
 #include "gaitopt/gait/evaluator.hpp"
 #include "gaitopt/gait/trajectory.hpp"
 #include "gaitopt/io/gait_file.hpp"
@@ -42,6 +43,8 @@ struct ExportRequest {
   int steps = 1;        // ≥ 1
   double rate = 1000;   // Hz, > 0
   Leg first_stance = Leg::Left;
+  int ramp_steps = 0;  // > 0: a ramp of this many steps in and out around `steps` (gait_ramp.hpp)
+  std::vector<double> ramp_rates;  // then the SS start rates of its steps (metadata)
 };
 
 // The multi-step trajectory. `model` carries the robot file's full friction (the feedforward
@@ -51,6 +54,11 @@ struct ExportRequest {
 std::vector<ExportRow> exportTrajectory(const GaitEvaluator& evaluator,
                                         const GaitEvaluation<double>& evaluation,
                                         const Model& model, const ExportRequest& request);
+
+// The samples of a multi-step walk (gait_ramp.hpp) as exported rows; leg 1 of the first SS
+// is the physical leg `first_stance`.
+std::vector<ExportRow> exportWalk(const Model& model, const std::vector<PlannedSample>& samples,
+                                  Leg first_stance);
 
 // One exported sample from a trajectory row of one step (frame of foot 1) placed in the world.
 ExportRow exportRow(const Model& model, const TrajectoryRow& row, int step, Leg stance,

@@ -2,6 +2,7 @@
 // Solver back-ends for an NlpProblem: Ipopt (interior point, limited-memory quasi-Newton
 // Hessian) and NLopt (SLSQP with gradients, COBYLA derivative-free). The adapters only
 // translate; the problem's pieces hold all the physics.
+#include <functional>
 #include <ostream>
 #include <string>
 #include <utility>
@@ -23,6 +24,9 @@ struct NlpSettings {
   std::string label;                 // hierarchy stage, for the progress lines
   int print_every = 1;               // progress line every k iterations (0: silent)
   std::ostream* log = nullptr;
+  // Called after each iteration (Ipopt) or cost evaluation (NLopt) with the last point whose
+  // cost was evaluated, whatever `log` and `print_every` (the CLI's progress in user units).
+  std::function<void(const VectorX& x, int iteration)> on_iteration;
 };
 
 struct NlpSolution {

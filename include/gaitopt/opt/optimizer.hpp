@@ -4,6 +4,7 @@
 // then onto levels 0–4 (nearest point in the scaled parameter norm, (3.78)), then solve the full
 // problem; an iterate whose step cannot be computed is refused to the solver, which shortens
 // its step. "direct" skips the two projections.
+#include <functional>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -31,6 +32,9 @@ struct SolverSettings {
   bool constraint_exchange = false;  // measured: SLSQP stalls with it, Ipopt gains (README)
   GradientMode gradients = GradientMode::Exact;
   int max_restarts = 3;  // of the full stage, from the last point, when it ends unmet
+  // Progress hook: the stage's label, the parameters of the solver's last point, its iteration.
+  std::function<void(const std::string& stage, const GaitParameters& p, int iteration)>
+      on_iteration;
 };
 
 struct OptimizationRequest {
