@@ -25,6 +25,7 @@ struct SolverSettings {
   int max_iter = 500;
   double tol = 1e-8;
   std::vector<std::pair<std::string, std::string>> ipopt_options;
+  HessianMode hessian = HessianMode::LimitedMemory;  // Ipopt's Hessian of the Lagrangian
   int print_every = 1;
   // Exchange method for the grid constraints (only near-active entries in each NLP, re-checked
   // on the full grid after each solve); false: every grid entry in one NLP.
