@@ -1,7 +1,7 @@
 // bench_optimize: wall-clock cost of whole optimisations on the shipped configurations.
 //
 //   bench_optimize [--json FILE] [--runs N] [--sweep-runs N] [--fd-runs N] [--no-ipopt]
-//                  [--no-configs] [--help]
+//                  [--ipopt-runs N] [--ipopt-only] [--no-configs] [--help]
 //
 // Measurements (configs/default.yaml, read with loadOptimizeConfig; the evaluator is built from
 // the configuration exactly as `gaitopt optimize` builds it):
@@ -13,8 +13,12 @@
 //       3), median of the total wall time, number of optimal speeds; every run must give the
 //       same statuses and C_Gamma.
 //   (c) peak resident set size of the process after the sweeps (getrusage ru_maxrss) [MiB].
-//   (d) the optimisation of (a) with backend Ipopt, constraint_exchange true, Ipopt option
-//       limited_memory_max_history 30: one run (seconds each); ratio to the SLSQP median.
+//   (d) Ipopt vs SLSQP side by side on configs/default.yaml, chesse_0.85.yaml and
+//       chevallereau_aoustin_0.75.yaml (the last two unless --no-configs): each configuration
+//       as shipped (SLSQP) and with backend Ipopt at the library's Ipopt defaults (dense BFGS
+//       Hessian, every grid entry in one NLP, no polish), `ipopt-runs` runs each (default 3):
+//       status, iterations, evaluations, wall-time median, final criterion, ratio Ipopt/SLSQP.
+//       --ipopt-only runs (d) alone.
 //   (e) the optimisation of (a) with GradientMode::FiniteDifference (SLSQP): median of
 //       `fd-runs` (default 3); ratio to the exact-gradient median.
 //   (f) exact vs finite-difference gradients on configs/default.yaml, chesse_0.85.yaml and
@@ -133,12 +137,14 @@ struct SweepRun {
 
 void usage(std::ostream& out) {
   out << "usage: bench_optimize [--json FILE] [--runs N] [--sweep-runs N] [--fd-runs N]\n"
-         "                      [--no-ipopt] [--no-configs]\n"
+         "                      [--no-ipopt] [--ipopt-runs N] [--ipopt-only] [--no-configs]\n"
          "  --json FILE     also write every figure as JSON to FILE\n"
          "  --runs N        timed SLSQP optimisations of configs/default.yaml (default 7, >= 7)\n"
          "  --sweep-runs N  timed 9-speed sweeps (default 3)\n"
          "  --fd-runs N     finite-difference runs (and exact runs of the extra configs; default 3)\n"
-         "  --no-ipopt      skip the Ipopt run (d)\n"
+         "  --no-ipopt      skip the Ipopt vs SLSQP comparison (d)\n"
+         "  --ipopt-runs N  runs per solver and configuration in (d) (default 3)\n"
+         "  --ipopt-only    run (d) alone\n"
          "  --no-configs    skip the chesse / chevallereau_aoustin gradient comparison\n";
 }
 
@@ -188,12 +194,71 @@ void printSeriesRuns(const char* label, const Series& s) {
                               : "NON-DETERMINISTIC: runs differ (see above)");
 }
 
+struct SolverCase {
+  std::string name;
+  Series slsqp, ipopt;
+};
+
+// (d): one configuration with its shipped SLSQP settings and with Ipopt's defaults.
+SolverCase compareSolvers(const std::string& name, int runs) {
+  const OptimizeConfig c = loadOptimizeConfig(std::string(kConfigDir) + name);
+  const GaitEvaluator cev(c.robot, c.options, c.model_options);
+  OptimizationRequest req = optimizationRequest(c, configuredInitialGuess(c, cev.model()));
+  req.solver.print_every = 0;
+  SolverCase sc;
+  sc.name = name;
+  req.solver.backend = Backend::NloptSlsqp;
+  sc.slsqp = repeat(cev, req, c.criterion, runs);
+  const SolverSettings defaults;
+  req.solver.backend = Backend::Ipopt;
+  req.solver.ipopt_options.clear();
+  req.solver.hessian = defaults.hessian;
+  req.solver.constraint_exchange = defaults.constraint_exchange;
+  sc.ipopt = repeat(cev, req, c.criterion, runs);
+  return sc;
+}
+
+void printSolverCases(const std::vector<SolverCase>& cases) {
+  std::printf("  %-32s %-6s %-10s %10s %8s %8s %10s %18s %6s
+", "config", "solver", "status",
+              "iterations", "f-evals", "g-evals", "wall [s]", "criterion", "det.");
+  for (const SolverCase& sc : cases) {
+    for (const auto& [label, s] : {std::pair<const char*, const Series*>{"slsqp", &sc.slsqp},
+                                   std::pair<const char*, const Series*>{"ipopt", &sc.ipopt}}) {
+      const Run& r = s->runs.front();
+      std::printf("  %-32s %-6s %-10s %10d %8d %8d %10.3f %18s %6s
+", sc.name.c_str(), label,
+                  r.status.c_str(), r.iterations, r.function_evaluations,
+                  r.gradient_evaluations, s->time.median, criterionText(r.criterion).c_str(),
+                  s->deterministic ? "yes" : "NO");
+    }
+    std::printf("  %-32s ratio Ipopt / SLSQP wall time: %.2f
+", sc.name.c_str(),
+                sc.ipopt.time.median / sc.slsqp.time.median);
+  }
+}
+
+void writeSolverCases(JsonWriter& w, const std::vector<SolverCase>& cases) {
+  w.beginArray();
+  for (const SolverCase& sc : cases) {
+    w.beginObject();
+    w.key("config").value(sc.name);
+    w.key("slsqp");
+    writeSeries(w, sc.slsqp);
+    w.key("ipopt");
+    writeSeries(w, sc.ipopt);
+    w.key("ratio_ipopt_to_slsqp").value(sc.ipopt.time.median / sc.slsqp.time.median);
+    w.endObject();
+  }
+  w.endArray();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string json_path;
-  int runs = 7, sweep_runs = 3, fd_runs = 3;
-  bool with_ipopt = true, with_configs = true;
+  int runs = 7, sweep_runs = 3, fd_runs = 3, ipopt_runs = 3;
+  bool with_ipopt = true, with_configs = true, ipopt_only = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
@@ -210,6 +275,10 @@ int main(int argc, char** argv) {
       ++i;
     } else if (arg == "--no-ipopt") {
       with_ipopt = false;
+    } else if (arg == "--ipopt-runs" && has_value && parsePositive(argv[i + 1], ipopt_runs)) {
+      ++i;
+    } else if (arg == "--ipopt-only") {
+      ipopt_only = true;
     } else if (arg == "--no-configs") {
       with_configs = false;
     } else {
@@ -238,6 +307,42 @@ int main(int argc, char** argv) {
   bool deterministic = true;
 
   printEnvironment("bench_optimize", env);
+  // (d) Ipopt vs SLSQP on the shipped configurations.
+  std::vector<SolverCase> solver_cases;
+  const auto runSolverComparison = [&] {
+    std::printf("(d) Ipopt (library defaults) vs SLSQP (as shipped), %d runs each; wall time: "
+                "median\n", ipopt_runs);
+    std::vector<std::string> names = {"default.yaml"};
+    if (with_configs) {
+      names.push_back("chesse_0.85.yaml");
+      names.push_back("chevallereau_aoustin_0.75.yaml");
+    }
+    for (const std::string& name : names) solver_cases.push_back(compareSolvers(name, ipopt_runs));
+    printSolverCases(solver_cases);
+    std::printf("\n");
+    for (const SolverCase& sc : solver_cases)
+      deterministic = deterministic && sc.slsqp.deterministic && sc.ipopt.deterministic;
+  };
+  if (ipopt_only) {
+    try {
+      runSolverComparison();
+    } catch (const std::exception& e) {
+      std::cerr << "bench_optimize: error: " << e.what() << "\n";
+      return 2;
+    }
+    if (!json_path.empty()) {
+      JsonWriter w;
+      w.beginObject();
+      writeEnvironment(w, "bench_optimize", env);
+      w.key("build").value(std::string(kBuildFlags));
+      w.key("deterministic").value(deterministic);
+      w.key("ipopt_vs_slsqp");
+      writeSolverCases(w, solver_cases);
+      w.endObject();
+      if (!writeJsonReport("bench_optimize", json_path, w)) return 1;
+    }
+    return deterministic ? 0 : 1;
+  }
   std::printf("config:    %s (robot %s, criterion %s, speed %s m/s, backend %s, hierarchy %s, "
               "constraint_exchange %s)\n\n",
               default_path.c_str(), config->robot_path.c_str(), criterionName(criterion),
@@ -315,20 +420,13 @@ int main(int argc, char** argv) {
   std::printf("(c) peak resident set size after the sweeps (ru_maxrss): %.1f MiB\n\n",
               peak_rss_mib);
 
-  // (d) Ipopt, exchange on, limited_memory_max_history 30.
-  std::optional<Run> ipopt;
   if (with_ipopt) {
-    OptimizationRequest req = request;
-    req.solver.backend = Backend::Ipopt;
-    req.solver.constraint_exchange = true;
-    req.solver.ipopt_options = {{"limited_memory_max_history", "30"}};
-    std::printf("(d) optimizeGait with Ipopt (constraint_exchange true, "
-                "limited_memory_max_history 30): 1 run\n");
-    ipopt = runOnce(ev, req, criterion);
-    std::printf("  %8.3f s  status %-10s  C_Gamma %s  (%d iterations, %d f-evals, %d g-evals)\n",
-                ipopt->wall_s, ipopt->status.c_str(), criterionText(ipopt->criterion).c_str(),
-                ipopt->iterations, ipopt->function_evaluations, ipopt->gradient_evaluations);
-    std::printf("  ratio Ipopt / SLSQP (median): %.1f\n\n", ipopt->wall_s / exact.time.median);
+    try {
+      runSolverComparison();
+    } catch (const std::exception& e) {
+      std::cerr << "bench_optimize: error: " << e.what() << "\n";
+      return 2;
+    }
   }
 
   // (e) finite-difference gradients, SLSQP.
@@ -430,16 +528,8 @@ int main(int argc, char** argv) {
     w.endArray();
     w.endObject();
     w.key("peak_rss_mib").value(peak_rss_mib);
-    w.key("ipopt");
-    if (ipopt) {
-      w.beginObject();
-      w.key("run");
-      writeRun(w, *ipopt);
-      w.key("ratio_to_slsqp").value(ipopt->wall_s / exact.time.median);
-      w.endObject();
-    } else {
-      w.null();
-    }
+    w.key("ipopt_vs_slsqp");
+    writeSolverCases(w, solver_cases);
     w.key("finite_difference").beginObject();
     w.key("timed");
     writeSeries(w, fd);

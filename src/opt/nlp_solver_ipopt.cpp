@@ -275,8 +275,19 @@ NlpSolution solveWithIpopt(NlpProblem& problem, const NlpSettings& settings) {
   Ipopt::OptionsList& o = *app->Options();
   o.SetIntegerValue("print_level", 0);
   o.SetStringValue("sb", "yes");
-  if (settings.hessian == HessianMode::LimitedMemory)
+  if (settings.hessian == HessianMode::LimitedMemory) {
     o.SetStringValue("hessian_approximation", "limited-memory");
+    o.SetStringValue("mu_strategy", "adaptive");
+  } else {
+    // Tuned on the default problem with the dense Hessians (README, "Which backend"): the
+    // monotone barrier update (Fiacco–McCormick) halved the iterations of the adaptive one,
+    // which cut μ early and then spent a third of its iterations in restoration. Neighbouring
+    // grid entries have nearly equal Jacobian rows, so Ipopt's least-squares initial
+    // multipliers reach ~1e10: they start at zero. No early stop at an "acceptable" point.
+    o.SetStringValue("mu_strategy", "monotone");
+    o.SetNumericValue("constr_mult_init_max", 0.0);
+    o.SetIntegerValue("acceptable_iter", 0);
+  }
   if (!settings.warm_start.empty()) {
     // Start at the given primal-dual point, not pushed into the interior nor re-initialised:
     // the previous stage's optimum with its active constraints.
@@ -287,7 +298,6 @@ NlpSolution solveWithIpopt(NlpProblem& problem, const NlpSettings& settings) {
       o.SetNumericValue(key, 1e-9);
     o.SetNumericValue("mu_init", 1e-6);
   }
-  o.SetStringValue("mu_strategy", "adaptive");
   o.SetIntegerValue("max_iter", settings.max_iter);
   o.SetNumericValue("tol", settings.tol);
   o.SetNumericValue("constr_viol_tol", settings.constraint_tol);

@@ -141,6 +141,8 @@ GaitParameters project(GaitEvaluationCache& cache, const GaitParameters& start, 
   // false), where SLSQP's backtracking on a huge cost measured unreliable.
   SolverSettings projection = s;
   projection.backend = Backend::Ipopt;
+  // Runs configured for another backend keep the quasi-Newton model they were measured with.
+  if (s.backend != Backend::Ipopt) projection.hessian = HessianMode::LimitedMemory;
   return solveStage(cache, start, max_level, kProjectionInterior, 0.0, projection, label, log, result,
                     [&](NlpProblem& problem) { problem.addCost(makeDistanceCost(start, cache.evaluator().options().parameterisation)); })
       .x;

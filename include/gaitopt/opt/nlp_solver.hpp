@@ -17,8 +17,9 @@ enum class NlpStatus { Solved, Infeasible, MaxIterations, Failed };
 enum class HessianMode {
   LimitedMemory,  // Ipopt's own L-BFGS (low-rank, solved through extra back-solves)
   DenseBfgs,      // a dense damped BFGS of the Lagrangian kept by the adapter (n is small)
-  Exact           // finite differences of the exact gradients, positive-definite on the null
+  Exact,          // finite differences of the exact gradients, positive-definite on the null
                   // space of the active constraints
+  ExactUnmodified // the same, indefinite: left to Ipopt's inertia correction
 };
 
 // Bound and constraint multipliers: a solve's final ones, or a warm start for the next solve.
