@@ -121,10 +121,6 @@ std::string criterionText(const std::optional<double>& v) {
 }
 
 // One configuration of the gradient comparison (f).
-struct GradientCase {
-  std::string name;
-  Series exact, fd;
-};
 
 struct SweepRun {
   double wall_s = 0.0;
@@ -194,60 +190,60 @@ void printSeriesRuns(const char* label, const Series& s) {
                               : "NON-DETERMINISTIC: runs differ (see above)");
 }
 
-struct SolverCase {
+// Two series on the same configuration: (d) SLSQP and Ipopt, (f) exact and FD gradients.
+struct PairedCase {
   std::string name;
-  Series slsqp, ipopt;
+  Series first, second;
 };
 
 // (d): one configuration with its shipped SLSQP settings and with Ipopt's defaults.
-SolverCase compareSolvers(const std::string& name, int runs) {
+PairedCase compareSolvers(const std::string& name, int runs) {
   const OptimizeConfig c = loadOptimizeConfig(std::string(kConfigDir) + name);
   const GaitEvaluator cev(c.robot, c.options, c.model_options);
   OptimizationRequest req = optimizationRequest(c, configuredInitialGuess(c, cev.model()));
   req.solver.print_every = 0;
-  SolverCase sc;
-  sc.name = name;
+  PairedCase pc;
+  pc.name = name;
   req.solver.backend = Backend::NloptSlsqp;
-  sc.slsqp = repeat(cev, req, c.criterion, runs);
+  pc.first = repeat(cev, req, c.criterion, runs);
   const SolverSettings defaults;
   req.solver.backend = Backend::Ipopt;
   req.solver.ipopt_options.clear();
   req.solver.hessian = defaults.hessian;
   req.solver.constraint_exchange = defaults.constraint_exchange;
-  sc.ipopt = repeat(cev, req, c.criterion, runs);
-  return sc;
+  pc.second = repeat(cev, req, c.criterion, runs);
+  return pc;
 }
 
-void printSolverCases(const std::vector<SolverCase>& cases) {
-  std::printf("  %-32s %-6s %-10s %10s %8s %8s %10s %18s %6s
-", "config", "solver", "status",
+void printPairedCases(const std::vector<PairedCase>& cases, const char* first,
+                      const char* second, const char* ratio) {
+  std::printf("  %-32s %-6s %-10s %10s %8s %8s %10s %18s %6s\n", "config", "run", "status",
               "iterations", "f-evals", "g-evals", "wall [s]", "criterion", "det.");
-  for (const SolverCase& sc : cases) {
-    for (const auto& [label, s] : {std::pair<const char*, const Series*>{"slsqp", &sc.slsqp},
-                                   std::pair<const char*, const Series*>{"ipopt", &sc.ipopt}}) {
+  for (const PairedCase& pc : cases) {
+    for (const auto& [label, s] : {std::pair<const char*, const Series*>{first, &pc.first},
+                                   std::pair<const char*, const Series*>{second, &pc.second}}) {
       const Run& r = s->runs.front();
-      std::printf("  %-32s %-6s %-10s %10d %8d %8d %10.3f %18s %6s
-", sc.name.c_str(), label,
+      std::printf("  %-32s %-6s %-10s %10d %8d %8d %10.3f %18s %6s\n", pc.name.c_str(), label,
                   r.status.c_str(), r.iterations, r.function_evaluations,
                   r.gradient_evaluations, s->time.median, criterionText(r.criterion).c_str(),
                   s->deterministic ? "yes" : "NO");
     }
-    std::printf("  %-32s ratio Ipopt / SLSQP wall time: %.2f
-", sc.name.c_str(),
-                sc.ipopt.time.median / sc.slsqp.time.median);
+    std::printf("  %-32s ratio %s wall time: %.2f\n", pc.name.c_str(), ratio,
+                pc.second.time.median / pc.first.time.median);
   }
 }
 
-void writeSolverCases(JsonWriter& w, const std::vector<SolverCase>& cases) {
+void writePairedCases(JsonWriter& w, const std::vector<PairedCase>& cases, const char* first,
+                      const char* second, const char* ratio_key) {
   w.beginArray();
-  for (const SolverCase& sc : cases) {
+  for (const PairedCase& pc : cases) {
     w.beginObject();
-    w.key("config").value(sc.name);
-    w.key("slsqp");
-    writeSeries(w, sc.slsqp);
-    w.key("ipopt");
-    writeSeries(w, sc.ipopt);
-    w.key("ratio_ipopt_to_slsqp").value(sc.ipopt.time.median / sc.slsqp.time.median);
+    w.key("config").value(pc.name);
+    w.key(first);
+    writeSeries(w, pc.first);
+    w.key(second);
+    writeSeries(w, pc.second);
+    w.key(ratio_key).value(pc.second.time.median / pc.first.time.median);
     w.endObject();
   }
   w.endArray();
@@ -308,7 +304,7 @@ int main(int argc, char** argv) {
 
   printEnvironment("bench_optimize", env);
   // (d) Ipopt vs SLSQP on the shipped configurations.
-  std::vector<SolverCase> solver_cases;
+  std::vector<PairedCase> solver_cases;
   const auto runSolverComparison = [&] {
     std::printf("(d) Ipopt (library defaults) vs SLSQP (as shipped), %d runs each; wall time: "
                 "median\n", ipopt_runs);
@@ -318,10 +314,10 @@ int main(int argc, char** argv) {
       names.push_back("chevallereau_aoustin_0.75.yaml");
     }
     for (const std::string& name : names) solver_cases.push_back(compareSolvers(name, ipopt_runs));
-    printSolverCases(solver_cases);
+    printPairedCases(solver_cases, "slsqp", "ipopt", "Ipopt / SLSQP");
     std::printf("\n");
-    for (const SolverCase& sc : solver_cases)
-      deterministic = deterministic && sc.slsqp.deterministic && sc.ipopt.deterministic;
+    for (const PairedCase& pc : solver_cases)
+      deterministic = deterministic && pc.first.deterministic && pc.second.deterministic;
   };
   if (ipopt_only) {
     try {
@@ -337,7 +333,7 @@ int main(int argc, char** argv) {
       w.key("build").value(std::string(kBuildFlags));
       w.key("deterministic").value(deterministic);
       w.key("ipopt_vs_slsqp");
-      writeSolverCases(w, solver_cases);
+      writePairedCases(w, solver_cases, "slsqp", "ipopt", "ratio_ipopt_to_slsqp");
       w.endObject();
       if (!writeJsonReport("bench_optimize", json_path, w)) return 1;
     }
@@ -440,19 +436,19 @@ int main(int argc, char** argv) {
               fd.time.median, fd.time.min, fd.time.median / exact.time.median);
 
   // (f) exact vs finite differences on the three shipped SLSQP configurations.
-  std::vector<GradientCase> cases = {{"default.yaml", exact, fd}};
+  std::vector<PairedCase> cases = {{"default.yaml", exact, fd}};
   if (with_configs) {
     for (const char* name : {"chesse_0.85.yaml", "chevallereau_aoustin_0.75.yaml"}) {
       try {
         const OptimizeConfig c = loadOptimizeConfig(std::string(kConfigDir) + name);
         const GaitEvaluator cev(c.robot, c.options, c.model_options);
         OptimizationRequest req = optimizationRequest(c, configuredInitialGuess(c, cev.model()));
-        GradientCase gc;
+        PairedCase gc;
         gc.name = name;
-        gc.exact = repeat(cev, req, c.criterion, fd_runs);
+        gc.first = repeat(cev, req, c.criterion, fd_runs);
         req.solver.gradients = GradientMode::FiniteDifference;
-        gc.fd = repeat(cev, req, c.criterion, fd_runs);
-        deterministic = deterministic && gc.exact.deterministic && gc.fd.deterministic;
+        gc.second = repeat(cev, req, c.criterion, fd_runs);
+        deterministic = deterministic && gc.first.deterministic && gc.second.deterministic;
         cases.push_back(std::move(gc));
       } catch (const std::exception& e) {
         std::cerr << "bench_optimize: error: " << e.what() << "\n";
@@ -461,20 +457,7 @@ int main(int argc, char** argv) {
     }
   }
   std::printf("(f) exact vs finite-difference gradients (SLSQP; wall time: median)\n");
-  std::printf("  %-32s %-6s %-10s %10s %8s %8s %10s %18s %6s\n", "config", "grad", "status",
-              "iterations", "f-evals", "g-evals", "wall [s]", "criterion", "det.");
-  for (const GradientCase& gc : cases) {
-    for (const auto& [label, s] : {std::pair<const char*, const Series*>{"exact", &gc.exact},
-                                   std::pair<const char*, const Series*>{"fd", &gc.fd}}) {
-      const Run& r = s->runs.front();
-      std::printf("  %-32s %-6s %-10s %10d %8d %8d %10.3f %18s %6s\n", gc.name.c_str(), label,
-                  r.status.c_str(), r.iterations, r.function_evaluations,
-                  r.gradient_evaluations, s->time.median, criterionText(r.criterion).c_str(),
-                  s->deterministic ? "yes" : "NO");
-    }
-    std::printf("  %-32s ratio FD / exact wall time: %.2f\n", gc.name.c_str(),
-                gc.fd.time.median / gc.exact.time.median);
-  }
+  printPairedCases(cases, "exact", "fd", "FD / exact");
 
   const double total_s = secondsSince(start);
   std::printf("\ntotal benchmark time %.1f s; %s\n(sink %g)\n", total_s,
@@ -529,24 +512,14 @@ int main(int argc, char** argv) {
     w.endObject();
     w.key("peak_rss_mib").value(peak_rss_mib);
     w.key("ipopt_vs_slsqp");
-    writeSolverCases(w, solver_cases);
+    writePairedCases(w, solver_cases, "slsqp", "ipopt", "ratio_ipopt_to_slsqp");
     w.key("finite_difference").beginObject();
     w.key("timed");
     writeSeries(w, fd);
     w.key("ratio_to_exact").value(fd.time.median / exact.time.median);
     w.endObject();
-    w.key("gradient_comparison").beginArray();
-    for (const GradientCase& gc : cases) {
-      w.beginObject();
-      w.key("config").value(gc.name);
-      w.key("exact");
-      writeSeries(w, gc.exact);
-      w.key("finite_difference");
-      writeSeries(w, gc.fd);
-      w.key("ratio_fd_to_exact").value(gc.fd.time.median / gc.exact.time.median);
-      w.endObject();
-    }
-    w.endArray();
+    w.key("gradient_comparison");
+    writePairedCases(w, cases, "exact", "finite_difference", "ratio_fd_to_exact");
     w.endObject();
     if (!writeJsonReport("bench_optimize", json_path, w)) return 1;
   }
