@@ -305,7 +305,8 @@ int main(int argc, char** argv) {
   printEnvironment("bench_optimize", env);
   // (d) Ipopt vs SLSQP on the shipped configurations.
   std::vector<PairedCase> solver_cases;
-  const auto runSolverComparison = [&] {
+  // false (after printing the error) when a configuration cannot be read.
+  const auto runSolverComparison = [&]() -> bool {
     std::printf("(d) Ipopt (library defaults) vs SLSQP (as shipped), %d runs each; wall time: "
                 "median\n", ipopt_runs);
     std::vector<std::string> names = {"default.yaml"};
@@ -313,19 +314,20 @@ int main(int argc, char** argv) {
       names.push_back("chesse_0.85.yaml");
       names.push_back("chevallereau_aoustin_0.75.yaml");
     }
-    for (const std::string& name : names) solver_cases.push_back(compareSolvers(name, ipopt_runs));
+    try {
+      for (const std::string& name : names) solver_cases.push_back(compareSolvers(name, ipopt_runs));
+    } catch (const std::exception& e) {
+      std::cerr << "bench_optimize: error: " << e.what() << "\n";
+      return false;
+    }
     printPairedCases(solver_cases, "slsqp", "ipopt", "Ipopt / SLSQP");
     std::printf("\n");
     for (const PairedCase& pc : solver_cases)
       deterministic = deterministic && pc.first.deterministic && pc.second.deterministic;
+    return true;
   };
   if (ipopt_only) {
-    try {
-      runSolverComparison();
-    } catch (const std::exception& e) {
-      std::cerr << "bench_optimize: error: " << e.what() << "\n";
-      return 2;
-    }
+    if (!runSolverComparison()) return 2;
     if (!json_path.empty()) {
       JsonWriter w;
       w.beginObject();
@@ -416,14 +418,7 @@ int main(int argc, char** argv) {
   std::printf("(c) peak resident set size after the sweeps (ru_maxrss): %.1f MiB\n\n",
               peak_rss_mib);
 
-  if (with_ipopt) {
-    try {
-      runSolverComparison();
-    } catch (const std::exception& e) {
-      std::cerr << "bench_optimize: error: " << e.what() << "\n";
-      return 2;
-    }
-  }
+  if (with_ipopt && !runSolverComparison()) return 2;
 
   // (e) finite-difference gradients, SLSQP.
   OptimizationRequest fd_request = request;
