@@ -1,7 +1,7 @@
 // bench_optimize: wall-clock cost of whole optimisations on the shipped configurations.
 //
 //   bench_optimize [--json FILE] [--runs N] [--sweep-runs N] [--fd-runs N] [--no-ipopt]
-//                  [--no-configs] [--help]
+//                  [--ipopt-runs N] [--ipopt-only] [--no-configs] [--help]
 //
 // Measurements (configs/default.yaml, read with loadOptimizeConfig; the evaluator is built from
 // the configuration exactly as `gaitopt optimize` builds it):
@@ -13,8 +13,12 @@
 //       3), median of the total wall time, number of optimal speeds; every run must give the
 //       same statuses and C_Gamma.
 //   (c) peak resident set size of the process after the sweeps (getrusage ru_maxrss) [MiB].
-//   (d) the optimisation of (a) with backend Ipopt, constraint_exchange true, Ipopt option
-//       limited_memory_max_history 30: one run (seconds each); ratio to the SLSQP median.
+//   (d) Ipopt vs SLSQP side by side on configs/default.yaml, chesse_0.85.yaml and
+//       chevallereau_aoustin_0.75.yaml (the last two unless --no-configs): each configuration
+//       as shipped (SLSQP) and with backend Ipopt at the library's Ipopt defaults (dense BFGS
+//       Hessian, every grid entry in one NLP, no polish), `ipopt-runs` runs each (default 3):
+//       status, iterations, evaluations, wall-time median, final criterion, ratio Ipopt/SLSQP.
+//       --ipopt-only runs (d) alone.
 //   (e) the optimisation of (a) with GradientMode::FiniteDifference (SLSQP): median of
 //       `fd-runs` (default 3); ratio to the exact-gradient median.
 //   (f) exact vs finite-difference gradients on configs/default.yaml, chesse_0.85.yaml and
@@ -117,10 +121,6 @@ std::string criterionText(const std::optional<double>& v) {
 }
 
 // One configuration of the gradient comparison (f).
-struct GradientCase {
-  std::string name;
-  Series exact, fd;
-};
 
 struct SweepRun {
   double wall_s = 0.0;
@@ -133,12 +133,14 @@ struct SweepRun {
 
 void usage(std::ostream& out) {
   out << "usage: bench_optimize [--json FILE] [--runs N] [--sweep-runs N] [--fd-runs N]\n"
-         "                      [--no-ipopt] [--no-configs]\n"
+         "                      [--no-ipopt] [--ipopt-runs N] [--ipopt-only] [--no-configs]\n"
          "  --json FILE     also write every figure as JSON to FILE\n"
          "  --runs N        timed SLSQP optimisations of configs/default.yaml (default 7, >= 7)\n"
          "  --sweep-runs N  timed 9-speed sweeps (default 3)\n"
          "  --fd-runs N     finite-difference runs (and exact runs of the extra configs; default 3)\n"
-         "  --no-ipopt      skip the Ipopt run (d)\n"
+         "  --no-ipopt      skip the Ipopt vs SLSQP comparison (d)\n"
+         "  --ipopt-runs N  runs per solver and configuration in (d) (default 3)\n"
+         "  --ipopt-only    run (d) alone\n"
          "  --no-configs    skip the chesse / chevallereau_aoustin gradient comparison\n";
 }
 
@@ -188,12 +190,71 @@ void printSeriesRuns(const char* label, const Series& s) {
                               : "NON-DETERMINISTIC: runs differ (see above)");
 }
 
+// Two series on the same configuration: (d) SLSQP and Ipopt, (f) exact and FD gradients.
+struct PairedCase {
+  std::string name;
+  Series first, second;
+};
+
+// (d): one configuration with its shipped SLSQP settings and with Ipopt's defaults.
+PairedCase compareSolvers(const std::string& name, int runs) {
+  const OptimizeConfig c = loadOptimizeConfig(std::string(kConfigDir) + name);
+  const GaitEvaluator cev(c.robot, c.options, c.model_options);
+  OptimizationRequest req = optimizationRequest(c, configuredInitialGuess(c, cev.model()));
+  req.solver.print_every = 0;
+  PairedCase pc;
+  pc.name = name;
+  req.solver.backend = Backend::NloptSlsqp;
+  pc.first = repeat(cev, req, c.criterion, runs);
+  const SolverSettings defaults;
+  req.solver.backend = Backend::Ipopt;
+  req.solver.ipopt_options.clear();
+  req.solver.hessian = defaults.hessian;
+  req.solver.constraint_exchange = defaults.constraint_exchange;
+  pc.second = repeat(cev, req, c.criterion, runs);
+  return pc;
+}
+
+void printPairedCases(const std::vector<PairedCase>& cases, const char* first,
+                      const char* second, const char* ratio) {
+  std::printf("  %-32s %-6s %-10s %10s %8s %8s %10s %18s %6s\n", "config", "run", "status",
+              "iterations", "f-evals", "g-evals", "wall [s]", "criterion", "det.");
+  for (const PairedCase& pc : cases) {
+    for (const auto& [label, s] : {std::pair<const char*, const Series*>{first, &pc.first},
+                                   std::pair<const char*, const Series*>{second, &pc.second}}) {
+      const Run& r = s->runs.front();
+      std::printf("  %-32s %-6s %-10s %10d %8d %8d %10.3f %18s %6s\n", pc.name.c_str(), label,
+                  r.status.c_str(), r.iterations, r.function_evaluations,
+                  r.gradient_evaluations, s->time.median, criterionText(r.criterion).c_str(),
+                  s->deterministic ? "yes" : "NO");
+    }
+    std::printf("  %-32s ratio %s wall time: %.2f\n", pc.name.c_str(), ratio,
+                pc.second.time.median / pc.first.time.median);
+  }
+}
+
+void writePairedCases(JsonWriter& w, const std::vector<PairedCase>& cases, const char* first,
+                      const char* second, const char* ratio_key) {
+  w.beginArray();
+  for (const PairedCase& pc : cases) {
+    w.beginObject();
+    w.key("config").value(pc.name);
+    w.key(first);
+    writeSeries(w, pc.first);
+    w.key(second);
+    writeSeries(w, pc.second);
+    w.key(ratio_key).value(pc.second.time.median / pc.first.time.median);
+    w.endObject();
+  }
+  w.endArray();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string json_path;
-  int runs = 7, sweep_runs = 3, fd_runs = 3;
-  bool with_ipopt = true, with_configs = true;
+  int runs = 7, sweep_runs = 3, fd_runs = 3, ipopt_runs = 3;
+  bool with_ipopt = true, with_configs = true, ipopt_only = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
@@ -210,6 +271,10 @@ int main(int argc, char** argv) {
       ++i;
     } else if (arg == "--no-ipopt") {
       with_ipopt = false;
+    } else if (arg == "--ipopt-runs" && has_value && parsePositive(argv[i + 1], ipopt_runs)) {
+      ++i;
+    } else if (arg == "--ipopt-only") {
+      ipopt_only = true;
     } else if (arg == "--no-configs") {
       with_configs = false;
     } else {
@@ -238,6 +303,44 @@ int main(int argc, char** argv) {
   bool deterministic = true;
 
   printEnvironment("bench_optimize", env);
+  // (d) Ipopt vs SLSQP on the shipped configurations.
+  std::vector<PairedCase> solver_cases;
+  // false (after printing the error) when a configuration cannot be read.
+  const auto runSolverComparison = [&]() -> bool {
+    std::printf("(d) Ipopt (library defaults) vs SLSQP (as shipped), %d runs each; wall time: "
+                "median\n", ipopt_runs);
+    std::vector<std::string> names = {"default.yaml"};
+    if (with_configs) {
+      names.push_back("chesse_0.85.yaml");
+      names.push_back("chevallereau_aoustin_0.75.yaml");
+    }
+    try {
+      for (const std::string& name : names) solver_cases.push_back(compareSolvers(name, ipopt_runs));
+    } catch (const std::exception& e) {
+      std::cerr << "bench_optimize: error: " << e.what() << "\n";
+      return false;
+    }
+    printPairedCases(solver_cases, "slsqp", "ipopt", "Ipopt / SLSQP");
+    std::printf("\n");
+    for (const PairedCase& pc : solver_cases)
+      deterministic = deterministic && pc.first.deterministic && pc.second.deterministic;
+    return true;
+  };
+  if (ipopt_only) {
+    if (!runSolverComparison()) return 2;
+    if (!json_path.empty()) {
+      JsonWriter w;
+      w.beginObject();
+      writeEnvironment(w, "bench_optimize", env);
+      w.key("build").value(std::string(kBuildFlags));
+      w.key("deterministic").value(deterministic);
+      w.key("ipopt_vs_slsqp");
+      writePairedCases(w, solver_cases, "slsqp", "ipopt", "ratio_ipopt_to_slsqp");
+      w.endObject();
+      if (!writeJsonReport("bench_optimize", json_path, w)) return 1;
+    }
+    return deterministic ? 0 : 1;
+  }
   std::printf("config:    %s (robot %s, criterion %s, speed %s m/s, backend %s, hierarchy %s, "
               "constraint_exchange %s)\n\n",
               default_path.c_str(), config->robot_path.c_str(), criterionName(criterion),
@@ -315,21 +418,7 @@ int main(int argc, char** argv) {
   std::printf("(c) peak resident set size after the sweeps (ru_maxrss): %.1f MiB\n\n",
               peak_rss_mib);
 
-  // (d) Ipopt, exchange on, limited_memory_max_history 30.
-  std::optional<Run> ipopt;
-  if (with_ipopt) {
-    OptimizationRequest req = request;
-    req.solver.backend = Backend::Ipopt;
-    req.solver.constraint_exchange = true;
-    req.solver.ipopt_options = {{"limited_memory_max_history", "30"}};
-    std::printf("(d) optimizeGait with Ipopt (constraint_exchange true, "
-                "limited_memory_max_history 30): 1 run\n");
-    ipopt = runOnce(ev, req, criterion);
-    std::printf("  %8.3f s  status %-10s  C_Gamma %s  (%d iterations, %d f-evals, %d g-evals)\n",
-                ipopt->wall_s, ipopt->status.c_str(), criterionText(ipopt->criterion).c_str(),
-                ipopt->iterations, ipopt->function_evaluations, ipopt->gradient_evaluations);
-    std::printf("  ratio Ipopt / SLSQP (median): %.1f\n\n", ipopt->wall_s / exact.time.median);
-  }
+  if (with_ipopt && !runSolverComparison()) return 2;
 
   // (e) finite-difference gradients, SLSQP.
   OptimizationRequest fd_request = request;
@@ -342,19 +431,19 @@ int main(int argc, char** argv) {
               fd.time.median, fd.time.min, fd.time.median / exact.time.median);
 
   // (f) exact vs finite differences on the three shipped SLSQP configurations.
-  std::vector<GradientCase> cases = {{"default.yaml", exact, fd}};
+  std::vector<PairedCase> cases = {{"default.yaml", exact, fd}};
   if (with_configs) {
     for (const char* name : {"chesse_0.85.yaml", "chevallereau_aoustin_0.75.yaml"}) {
       try {
         const OptimizeConfig c = loadOptimizeConfig(std::string(kConfigDir) + name);
         const GaitEvaluator cev(c.robot, c.options, c.model_options);
         OptimizationRequest req = optimizationRequest(c, configuredInitialGuess(c, cev.model()));
-        GradientCase gc;
+        PairedCase gc;
         gc.name = name;
-        gc.exact = repeat(cev, req, c.criterion, fd_runs);
+        gc.first = repeat(cev, req, c.criterion, fd_runs);
         req.solver.gradients = GradientMode::FiniteDifference;
-        gc.fd = repeat(cev, req, c.criterion, fd_runs);
-        deterministic = deterministic && gc.exact.deterministic && gc.fd.deterministic;
+        gc.second = repeat(cev, req, c.criterion, fd_runs);
+        deterministic = deterministic && gc.first.deterministic && gc.second.deterministic;
         cases.push_back(std::move(gc));
       } catch (const std::exception& e) {
         std::cerr << "bench_optimize: error: " << e.what() << "\n";
@@ -363,20 +452,7 @@ int main(int argc, char** argv) {
     }
   }
   std::printf("(f) exact vs finite-difference gradients (SLSQP; wall time: median)\n");
-  std::printf("  %-32s %-6s %-10s %10s %8s %8s %10s %18s %6s\n", "config", "grad", "status",
-              "iterations", "f-evals", "g-evals", "wall [s]", "criterion", "det.");
-  for (const GradientCase& gc : cases) {
-    for (const auto& [label, s] : {std::pair<const char*, const Series*>{"exact", &gc.exact},
-                                   std::pair<const char*, const Series*>{"fd", &gc.fd}}) {
-      const Run& r = s->runs.front();
-      std::printf("  %-32s %-6s %-10s %10d %8d %8d %10.3f %18s %6s\n", gc.name.c_str(), label,
-                  r.status.c_str(), r.iterations, r.function_evaluations,
-                  r.gradient_evaluations, s->time.median, criterionText(r.criterion).c_str(),
-                  s->deterministic ? "yes" : "NO");
-    }
-    std::printf("  %-32s ratio FD / exact wall time: %.2f\n", gc.name.c_str(),
-                gc.fd.time.median / gc.exact.time.median);
-  }
+  printPairedCases(cases, "exact", "fd", "FD / exact");
 
   const double total_s = secondsSince(start);
   std::printf("\ntotal benchmark time %.1f s; %s\n(sink %g)\n", total_s,
@@ -430,33 +506,15 @@ int main(int argc, char** argv) {
     w.endArray();
     w.endObject();
     w.key("peak_rss_mib").value(peak_rss_mib);
-    w.key("ipopt");
-    if (ipopt) {
-      w.beginObject();
-      w.key("run");
-      writeRun(w, *ipopt);
-      w.key("ratio_to_slsqp").value(ipopt->wall_s / exact.time.median);
-      w.endObject();
-    } else {
-      w.null();
-    }
+    w.key("ipopt_vs_slsqp");
+    writePairedCases(w, solver_cases, "slsqp", "ipopt", "ratio_ipopt_to_slsqp");
     w.key("finite_difference").beginObject();
     w.key("timed");
     writeSeries(w, fd);
     w.key("ratio_to_exact").value(fd.time.median / exact.time.median);
     w.endObject();
-    w.key("gradient_comparison").beginArray();
-    for (const GradientCase& gc : cases) {
-      w.beginObject();
-      w.key("config").value(gc.name);
-      w.key("exact");
-      writeSeries(w, gc.exact);
-      w.key("finite_difference");
-      writeSeries(w, gc.fd);
-      w.key("ratio_fd_to_exact").value(gc.fd.time.median / gc.exact.time.median);
-      w.endObject();
-    }
-    w.endArray();
+    w.key("gradient_comparison");
+    writePairedCases(w, cases, "exact", "finite_difference", "ratio_fd_to_exact");
     w.endObject();
     if (!writeJsonReport("bench_optimize", json_path, w)) return 1;
   }

@@ -43,6 +43,7 @@ const std::array<const char*, 3> kCriteria = {"C_Gamma", "C_E", "W"};
 const std::array<const char*, 3> kBackends = {"nlopt_slsqp", "ipopt", "nlopt_cobyla"};
 const std::array<const char*, 2> kHierarchies = {"staged", "direct"};
 const std::array<const char*, 2> kGradientModes = {"exact", "finite_difference"};
+const std::array<const char*, 4> kHessians = {"limited_memory", "bfgs", "exact", "exact_unmodified"};
 const std::array<const char*, 1> kParameterisations = {"miossec"};
 
 bool isPlainFileName(const std::string& name) {
@@ -100,6 +101,11 @@ SolverSettings parseSolver(const YamlMap& m) {
   s.gradients = choice(m, "gradients", kGradientModes, 0) == 1 ? GradientMode::FiniteDifference
                                                                : GradientMode::Exact;
   s.print_every = integerOr(m, "print_every", 0, s.print_every);
+  if (m.has("hessian")) {
+    if (s.backend != Backend::Ipopt)
+      throw m.error("hessian", "is used only with backend: ipopt; remove it or change the backend");
+    s.hessian = static_cast<HessianMode>(choice(m, "hessian", kHessians, 0));
+  }
   if (const std::optional<YamlMap> ipopt = m.optionalMap("ipopt")) {
     if (s.backend != Backend::Ipopt) {
       throw m.error("ipopt", std::string("Ipopt options are used only with backend: ipopt (this "

@@ -1,5 +1,8 @@
 #include "gaitopt/opt/nlp_problem.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace gaitopt {
 
 void NlpProblem::addConstraints(std::unique_ptr<ConstraintSet> set) {
@@ -54,6 +57,41 @@ bool NlpProblem::constraintJacobian(const VectorX& x, MatrixX& jac) {
     if (!set->jacobian(x, jac.middleRows(row, set->size()))) return false;
     row += set->size();
   }
+  return true;
+}
+
+bool NlpProblem::lagrangianGradient(const VectorX& x, double sigma, const VectorX& lambda,
+                                    VectorX& grad) {
+  MatrixX jac;
+  if (!costGradient(x, grad) || !constraintJacobian(x, jac)) return false;
+  grad = sigma * grad + jac.transpose() * lambda;
+  return true;
+}
+
+// Step h = 1e-6·max(1, |x_j|) (the square root of the gradients' relative accuracy, ~1e-12 for
+// the AD gradients of the integrated step); a side that cannot be evaluated is tried backwards.
+bool NlpProblem::lagrangianHessian(const VectorX& x, double sigma, const VectorX& lambda,
+                                   MatrixX& hess) {
+  const int n = static_cast<int>(x.size());
+  VectorX g0, g1;
+  if (!lagrangianGradient(x, sigma, lambda, g0)) return false;
+  hess.resize(n, n);
+  for (int j = 0; j < n; ++j) {
+    double h = 1e-6 * std::max(1.0, std::abs(x(j)));
+    if (variables_.lower(j) == variables_.upper(j)) {
+      hess.col(j).setZero();
+      continue;
+    }
+    VectorX xp = x;
+    xp(j) += h;
+    if (!lagrangianGradient(xp, sigma, lambda, g1)) {
+      h = -h;
+      xp(j) = x(j) + h;
+      if (!lagrangianGradient(xp, sigma, lambda, g1)) return false;
+    }
+    hess.col(j) = (g1 - g0) / h;
+  }
+  hess = 0.5 * (hess + hess.transpose()).eval();
   return true;
 }
 

@@ -3,8 +3,11 @@
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>
 #include <cstdio>
+#include <algorithm>
 #include <cstdlib>
+#include <vector>
 
+#include "gaitopt/opt/hessian_modification.hpp"
 #include "gaitopt/opt/nlp_solver.hpp"
 
 namespace gaitopt {
@@ -13,16 +16,23 @@ namespace {
 using Ipopt::Index;
 using Ipopt::Number;
 
+// A constraint within this distance of a bound (scaled units) counts as active when the exact
+// Hessian is made positive-definite on the active constraints' null space.
+constexpr double kActiveDistance = 1e-3;
+// Smallest eigenvalue of the modified reduced Hessian, relative to its largest |eigenvalue|.
+constexpr double kMinRelativeCurvature = 1e-6;
+
 class TnlpAdapter : public Ipopt::TNLP {
  public:
-  TnlpAdapter(NlpProblem& p, const NlpSettings& s) : problem_(p), settings_(s) {}
+  TnlpAdapter(NlpProblem& p, const NlpSettings& s)
+      : problem_(p), settings_(s), bfgs_(p.variables().size()) {}
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac, Index& nnz_h,
                     IndexStyleEnum& style) override {
     n = problem_.variables().size();
     m = problem_.numConstraints();
     nnz_jac = n * m;  // dense: every constraint depends on every gait parameter
-    nnz_h = 0;
+    nnz_h = settings_.hessian == HessianMode::LimitedMemory ? 0 : n * (n + 1) / 2;
     style = C_STYLE;
     return true;
   }
@@ -36,14 +46,20 @@ class TnlpAdapter : public Ipopt::TNLP {
     Eigen::Map<VectorX>(gu, m) = hi;
     return true;
   }
-  bool get_starting_point(Index n, bool, Number* x, bool, Number*, Number*, Index, bool,
-                          Number*) override {
+  bool get_starting_point(Index n, bool, Number* x, bool init_z, Number* z_l, Number* z_u,
+                          Index m, bool init_lambda, Number* lambda) override {
     Eigen::Map<VectorX>(x, n) = problem_.variables().initial;
+    const NlpMultipliers& w = settings_.warm_start;
+    if (init_z) {
+      Eigen::Map<VectorX>(z_l, n) = w.z_lower;
+      Eigen::Map<VectorX>(z_u, n) = w.z_upper;
+    }
+    if (init_lambda) Eigen::Map<VectorX>(lambda, m) = w.lambda;
     return true;
   }
   bool eval_f(Index n, const Number* x, bool, Number& f) override {
-    last_x_ = Eigen::Map<const VectorX>(x, n);
-    return problem_.cost(last_x_, f);
+    evaluated_x_ = Eigen::Map<const VectorX>(x, n);
+    return problem_.cost(evaluated_x_, f);
   }
   bool eval_grad_f(Index n, const Number* x, bool, Number* grad) override {
     VectorX g;
@@ -73,10 +89,33 @@ class TnlpAdapter : public Ipopt::TNLP {
                                                                                        n) = jac;
     return true;
   }
-  void finalize_solution(Ipopt::SolverReturn status, Index n, const Number* x, const Number*,
-                         const Number*, Index, const Number*, const Number*, Number obj,
-                         const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
+  bool eval_h(Index n, const Number* x, bool, Number sigma, Index m, const Number* lambda, bool,
+              Index, Index* rows, Index* cols, Number* values) override {
+    if (values == nullptr) {
+      for (Index i = 0, k = 0; i < n; ++i)
+        for (Index j = 0; j <= i; ++j, ++k) {
+          rows[k] = i;
+          cols[k] = j;
+        }
+      return true;
+    }
+    const VectorX xv = Eigen::Map<const VectorX>(x, n);
+    const VectorX lv = Eigen::Map<const VectorX>(lambda, m);
+    MatrixX hess;
+    if (!(settings_.hessian == HessianMode::DenseBfgs ? bfgsHessian(xv, sigma, lv, hess)
+                                                      : exactHessian(xv, sigma, lv, hess)))
+      return false;
+    for (Index i = 0, k = 0; i < n; ++i)
+      for (Index j = 0; j <= i; ++j, ++k) values[k] = hess(i, j);
+    return true;
+  }
+  void finalize_solution(Ipopt::SolverReturn status, Index n, const Number* x, const Number* z_l,
+                         const Number* z_u, Index m, const Number*, const Number* lambda,
+                         Number obj, const Ipopt::IpoptData*,
+                         Ipopt::IpoptCalculatedQuantities*) override {
     solution_.x = Eigen::Map<const VectorX>(x, n);
+    solution_.multipliers = {Eigen::Map<const VectorX>(z_l, n), Eigen::Map<const VectorX>(z_u, n),
+                             Eigen::Map<const VectorX>(lambda, m)};
     solution_.objective = obj;
     solution_.status = toStatus(status);
   }
@@ -84,7 +123,7 @@ class TnlpAdapter : public Ipopt::TNLP {
                              Number inf_du, Number, Number, Number, Number, Number, Index,
                              const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
     solution_.iterations = iter;
-    if (settings_.on_iteration && last_x_.size() > 0) settings_.on_iteration(last_x_, iter);
+    if (settings_.on_iteration && evaluated_x_.size() > 0) settings_.on_iteration(evaluated_x_, iter);
     if (settings_.log && settings_.print_every > 0 && iter % settings_.print_every == 0) {
       char line[160];
       std::snprintf(line, sizeof line, "[%s] iter %4d  objective %.8e  violation %.3e  dual %.3e%s\n",
@@ -97,6 +136,33 @@ class TnlpAdapter : public Ipopt::TNLP {
   const NlpSolution& solution() const { return solution_; }
 
  private:
+  // BFGS pair from the previous Hessian point, both gradients taken with today's multipliers.
+  bool bfgsHessian(const VectorX& x, double sigma, const VectorX& lambda, MatrixX& hess) {
+    VectorX grad_f;
+    MatrixX jac;
+    if (!problem_.costGradient(x, grad_f) || !problem_.constraintJacobian(x, jac)) return false;
+    if (last_x_.size() > 0 && last_x_ != x)
+      bfgs_.update(x - last_x_, sigma * (grad_f - last_grad_f_) + (jac - last_jac_).transpose() * lambda);
+    last_x_ = x;
+    last_grad_f_ = grad_f;
+    last_jac_ = jac;
+    hess = bfgs_.matrix();
+    return true;
+  }
+  bool exactHessian(const VectorX& x, double sigma, const VectorX& lambda, MatrixX& hess) {
+    if (!problem_.lagrangianHessian(x, sigma, lambda, hess)) return false;
+    if (settings_.hessian != HessianMode::Exact) return true;
+    VectorX g, lo, hi;
+    MatrixX jac;
+    if (!problem_.constraints(x, g) || !problem_.constraintJacobian(x, jac)) return false;
+    problem_.constraintBounds(lo, hi);
+    std::vector<int> active;
+    for (int i = 0; i < g.size(); ++i)
+      if (g(i) - lo(i) <= kActiveDistance || hi(i) - g(i) <= kActiveDistance) active.push_back(i);
+    const double largest = std::max(1e-12, hess.cwiseAbs().maxCoeff());
+    hess = positiveOnNullSpace(hess, jac(active, Eigen::all), kMinRelativeCurvature * largest);
+    return true;
+  }
   static NlpStatus toStatus(Ipopt::SolverReturn s) {
     switch (s) {
       case Ipopt::SUCCESS:
@@ -110,7 +176,10 @@ class TnlpAdapter : public Ipopt::TNLP {
   NlpProblem& problem_;
   const NlpSettings& settings_;
   NlpSolution solution_;
-  VectorX last_x_;
+  DampedBfgs bfgs_;
+  VectorX evaluated_x_;  // the last point Ipopt asked a cost of: the progress lines' iterate
+  VectorX last_x_, last_grad_f_;  // the previous Hessian point (BFGS pair)
+  MatrixX last_jac_;
 };
 
 // Integer-looking values as integers, other numbers as reals, the rest as strings; the key of
@@ -209,8 +278,29 @@ NlpSolution solveWithIpopt(NlpProblem& problem, const NlpSettings& settings) {
   Ipopt::OptionsList& o = *app->Options();
   o.SetIntegerValue("print_level", 0);
   o.SetStringValue("sb", "yes");
-  o.SetStringValue("hessian_approximation", "limited-memory");
-  o.SetStringValue("mu_strategy", "adaptive");
+  if (settings.hessian == HessianMode::LimitedMemory) {
+    o.SetStringValue("hessian_approximation", "limited-memory");
+    o.SetStringValue("mu_strategy", "adaptive");
+  } else {
+    // Tuned on the default problem with the dense Hessians (README, "Which backend"): the
+    // monotone barrier update (Fiacco–McCormick) halved the iterations of the adaptive one,
+    // which cut μ early and then spent a third of its iterations in restoration. Neighbouring
+    // grid entries have nearly equal Jacobian rows, so Ipopt's least-squares initial
+    // multipliers reach ~1e10: they start at zero. No early stop at an "acceptable" point.
+    o.SetStringValue("mu_strategy", "monotone");
+    o.SetNumericValue("constr_mult_init_max", 0.0);
+    o.SetIntegerValue("acceptable_iter", 0);
+  }
+  if (!settings.warm_start.empty()) {
+    // Start at the given primal-dual point, not pushed into the interior nor re-initialised:
+    // the previous stage's optimum with its active constraints.
+    o.SetStringValue("warm_start_init_point", "yes");
+    for (const char* key : {"warm_start_bound_push", "warm_start_bound_frac",
+                            "warm_start_slack_bound_push", "warm_start_slack_bound_frac",
+                            "warm_start_mult_bound_push"})
+      o.SetNumericValue(key, 1e-9);
+    o.SetNumericValue("mu_init", 1e-6);
+  }
   o.SetIntegerValue("max_iter", settings.max_iter);
   o.SetNumericValue("tol", settings.tol);
   o.SetNumericValue("constr_viol_tol", settings.constraint_tol);

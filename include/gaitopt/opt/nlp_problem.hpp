@@ -51,6 +51,12 @@ class NlpProblem {
   bool costGradient(const VectorX& x, VectorX& grad);
   bool constraints(const VectorX& x, VectorX& g);
   bool constraintJacobian(const VectorX& x, MatrixX& jac);
+  // ∇ₓ(σ f + λᵀ g).
+  bool lagrangianGradient(const VectorX& x, double sigma, const VectorX& lambda, VectorX& grad);
+  // ∇²ₓ(σ f + λᵀ g) by forward differences of the exact gradients (n gradient evaluations),
+  // symmetrised. The pieces carry first derivatives only: second-order AD through the step
+  // evaluation would cost far more than n exact gradients.
+  bool lagrangianHessian(const VectorX& x, double sigma, const VectorX& lambda, MatrixX& hess);
   // Name of the constraint set holding row `row`, and the row's index inside it.
   std::pair<std::string, int> constraintOrigin(int row) const;
 

@@ -14,6 +14,21 @@ namespace gaitopt {
 
 enum class NlpStatus { Solved, Infeasible, MaxIterations, Failed };
 
+// Where Ipopt's Hessian of the Lagrangian comes from.
+enum class HessianMode {
+  LimitedMemory,  // Ipopt's own L-BFGS (low-rank, solved through extra back-solves)
+  DenseBfgs,      // a dense damped BFGS of the Lagrangian kept by the adapter (n is small)
+  Exact,          // finite differences of the exact gradients, positive-definite on the null
+                  // space of the active constraints
+  ExactUnmodified // the same, indefinite: left to Ipopt's inertia correction
+};
+
+// Bound and constraint multipliers: a solve's final ones, or a warm start for the next solve.
+struct NlpMultipliers {
+  VectorX z_lower, z_upper, lambda;
+  bool empty() const { return lambda.size() == 0 && z_lower.size() == 0; }
+};
+
 const char* nlpStatusName(NlpStatus s);
 
 struct NlpSettings {
@@ -21,6 +36,9 @@ struct NlpSettings {
   double tol = 1e-6;                 // optimality tolerance
   double constraint_tol = 1e-7;      // feasibility tolerance on the scaled constraints
   std::vector<std::pair<std::string, std::string>> ipopt_options;  // passed through
+  HessianMode hessian = HessianMode::LimitedMemory;  // Ipopt only
+  // Ipopt only: start from these multipliers (sizes n, n, m) with a warm-started interior point.
+  NlpMultipliers warm_start;
   std::string label;                 // hierarchy stage, for the progress lines
   int print_every = 1;               // progress line every k iterations (0: silent)
   std::ostream* log = nullptr;
@@ -34,6 +52,7 @@ struct NlpSolution {
   NlpStatus status = NlpStatus::Failed;
   int iterations = 0;
   double objective = 0.0;
+  NlpMultipliers multipliers;  // Ipopt only
   std::string message;
 };
 

@@ -26,6 +26,8 @@ struct SolverSettings {
   int max_iter = 500;
   double tol = 1e-8;
   std::vector<std::pair<std::string, std::string>> ipopt_options;
+  // Ipopt's Hessian of the Lagrangian: the dense BFGS measured fastest (README).
+  HessianMode hessian = HessianMode::DenseBfgs;
   int print_every = 1;
   // Exchange method for the grid constraints (only near-active entries in each NLP, re-checked
   // on the full grid after each solve); false: every grid entry in one NLP.
