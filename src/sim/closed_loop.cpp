@@ -23,9 +23,10 @@ constexpr double kR2xWeight = 1e-6;
 // [N·m, N] a constraint row within this of its bound holds: optimised gaits ride on their
 // torque limits and friction cones, which round-off must not count as a violation.
 constexpr double kConstraintTolerance = 1e-8;
-// Fraction of the plant's weight by which |Rx| may exceed μ Rz before the foot counts as
-// slipping: the optimised DS puts R2x on the cone of the gait's μ (round-off margin).
-constexpr double kSlipTolerance = 1e-7;
+// Fraction of the plant's weight by which a contact constraint of the plant may be violated
+// before it counts (|Rx| > μ Rz: slip; Rz < 0: lift-off): the optimised DS puts R2x on the
+// cone of the gait's μ, and the projection (4.60) holds a normal force at 0 (round-off margin).
+constexpr double kContactTolerance = 1e-7;
 
 // Torques and reactions the controller's model predicts for the inputs v (SS: ÿ; DS: α̈, δ̈1,
 // δ̈2, R2x); affine in v at a given state.
@@ -311,7 +312,7 @@ void closedLoopEvents(const ClosedLoop& s, bool ss, const DsReference& ds, doubl
   const ClosedLoopPoint e = evaluateClosedLoop(s, ss, ds, t, q, qd);
   const Model& p = s.plant;
   const double mu = s.options.plant_friction_coefficient;
-  const double slack = kSlipTolerance * p.total_mass * p.gravity;
+  const double slack = kContactTolerance * p.total_mass * p.gravity;
   g.resize(kClosedLoopEvents);
   if (ss) {
     const ChainState<double> st = chainState(p, q, qd);
@@ -320,14 +321,14 @@ void closedLoopEvents(const ClosedLoop& s, bool ss, const DsReference& ds, doubl
     // impact landing, the swing foot reaches the ground.
     const bool by_height = s.options.touchdown_by_foot_height;
     g << (by_height ? foot2_z : q(0) - s.motion.alpha_fSS),
-        by_height ? 1.0 : foot2_z + kGroundTolerance, e.R1(1),
+        by_height ? 1.0 : foot2_z + kGroundTolerance, e.R1(1) + slack,
         chainPoint(p.pinned.hip, st)(1) - kFallHipHeight, -qd(0), mu * e.R1(1) - e.R1(0) + slack,
         mu * e.R1(1) + e.R1(0) + slack;
   } else {
     // DS end: T_DS elapsed (cubic control), or α reaches α_fDS (time-optimal control, §4.3.1).
     const bool optimal = s.options.ds_control == DsAlphaControl::TimeOptimal;
-    g << (optimal ? q(0) - s.motion.ds_alpha(s.motion.T_DS).value : ds.t_end - t), e.R1(1), e.R2(1),
-        mu * e.R1(1) - e.R1(0) + slack, mu * e.R1(1) + e.R1(0) + slack,
+    g << (optimal ? q(0) - s.motion.ds_alpha(s.motion.T_DS).value : ds.t_end - t), e.R1(1) + slack,
+        e.R2(1) + slack, mu * e.R1(1) - e.R1(0) + slack, mu * e.R1(1) + e.R1(0) + slack,
         mu * e.R2(1) - e.R2(0) + slack, mu * e.R2(1) + e.R2(0) + slack;
   }
 }

@@ -158,6 +158,25 @@ TEST_CASE("Torque projection keeps the motor torques within the envelope", "[sim
   CHECK(torqueRatio(f.model, limited, req.full_torque_envelope) <= 1.0 + 1e-9);
 }
 
+TEST_CASE("Contact projection: a faster start walks with its DS normal force held at 0", "[sim]") {
+  const DefaultGait f;
+  WalkRequest req = gaitRequest(f.gait.options, 2);
+  req.dalphad0 = -0.01;
+  req.torque_limits = false;
+  const WalkResult free = simulateWalk(f.evaluation, f.model, f.model, req);
+  CHECK(free.outcome == WalkOutcome::StanceLiftOff);
+  req.torque_limits = true;
+  const WalkResult held = simulateWalk(f.evaluation, f.model, f.model, req);
+  INFO(held.message);
+  REQUIRE(held.outcome == WalkOutcome::Completed);
+  double least = 1e9;
+  for (const WalkSample& s : held.samples)
+    if (!s.single_support) least = std::min({least, s.R1(1), s.R2(1)});
+  CHECK(least >= -1e-6);
+  CHECK(least <= 1e-3);  // the bound was active
+  CHECK(held.steps[1].alphad_start == Approx(f.evaluation.motion.alphadot_iSS).margin(1e-6));
+}
+
 TEST_CASE("Low-friction ground: the stance foot slips", "[sim]") {
   const DefaultGait f;
   WalkRequest req = gaitRequest(f.gait.options, 2);
