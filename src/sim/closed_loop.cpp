@@ -104,7 +104,7 @@ Vec4 ssControl(const ClosedLoop& s, const Vec5& q, const Vec5& qd, ClosedLoopPoi
   const auto response = [&](const Vec4& v) {
     InputResponse r;
     r.gamma_star = lu.solve(Vec4(v + drift)) + friction;
-    const Vec5 qdd = forwardDynamicsSS(c, q, qd, r.gamma_star, SignMode::Smooth);
+    const Vec5 qdd = A.solve(Vec5(c.D_Gamma * (r.gamma_star - friction) - t.C - t.G));  // (1.32)
     const Vec2 acc = pinnedComAcceleration(c, q, qd, qdd);
     r.R1 = Vec2(c.total_mass * acc(0), c.total_mass * (acc(1) + c.gravity));
     r.R2.setZero();
