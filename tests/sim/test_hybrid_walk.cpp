@@ -124,6 +124,23 @@ TEST_CASE("gaitopt simulate CLI: outputs, outcome, bad input", "[sim]") {
   CHECK(run.exit_code == 3);
   CHECK_THAT(readFile(out2 + "/summary.json"),
              Catch::Matchers::Contains("impact model not available"));
+  // The impact-landing gait: algebraic impact by default; a low-μ ground slides at impact.
+  const std::string impact_gait = sourcePath("configs/gait/chevallereau_aoustin_0.75_impact.yaml");
+  const std::string out3 = dir.fresh("walk");
+  run = runCli("simulate --gait " + quoted(impact_gait) + " --steps 2 --out " + quoted(out3));
+  REQUIRE(run.exit_code == 0);
+  CHECK_THAT(readFile(out3 + "/summary.json"),
+             Catch::Matchers::Contains("\"impact_model\": \"algebraic\""));
+  CHECK_THAT(readFile(out3 + "/steps.csv"), Catch::Matchers::Contains(",lift/stick,"));
+  const std::string out4 = dir.fresh("walk");
+  run = runCli("simulate --gait " + quoted(impact_gait) + " --steps 2 --ground-mu 0.5 --out " +
+               quoted(out4));
+  CHECK(run.exit_code == 3);
+  CHECK_THAT(readFile(out4 + "/summary.json"),
+             Catch::Matchers::Contains("\"outcome\": \"slipped\""));
+  run = runCli("simulate --gait " + quoted(gait) + " --ds-control fastest --out " +
+               quoted(dir.fresh("bad")));
+  CHECK(run.exit_code == 2);
   run = runCli("simulate --gait " + quoted(gait) + " --perturb knee=1 --out " +
                quoted(dir.fresh("bad")));
   CHECK(run.exit_code == 2);
