@@ -6,11 +6,12 @@
 //
 // Controller (α replacing time): in SS the four outputs y = δ − δ_d(α) of the virtual
 // constraints are driven by input–output linearisation to ÿ = −ω² y − 2ω ẏ (critically damped,
-// bandwidth ω); the zero dynamics (α) evolve freely. In DS the three free coordinates
-// (α, δ1, δ2) track α_r(t) (sim/ds_alpha_control.hpp) and δ_d(α_r(t)); the fourth input R2x is
-// the one of least Γ*ᵀΓ* within both friction cones (the 1-D QP (3.68)–(3.70)). The inputs are
-// then projected onto the torque envelope and the contact constraints (4.57), (4.60) when they
-// leave them (sim/input_projection.hpp).
+// bandwidth ω); the zero dynamics (α) evolve freely. In DS either (α, δ1, δ2) track α_r(t), a
+// cubic to the planned lift-off state, and δ_d(α_r(t)) (DsAlphaControl::Cubic), or α̈ drives α̇
+// to the gait's cyclic curve α̇_c(α) with the outputs δ1,2 − δ_d(α) (TimeOptimal, (4.1)); the
+// fourth input R2x is the one of least Γ*ᵀΓ* within both friction cones (the 1-D QP
+// (3.68)–(3.70)). The inputs are then projected onto the torque envelope and the contact
+// constraints (4.57), (4.60) when they leave them (math/small_qp.hpp).
 #include <functional>
 #include <string>
 
@@ -33,7 +34,8 @@ const char* outcomeName(WalkOutcome o);
 
 enum class DsAlphaControl {
   Cubic,        // α_r(t): cubic from the touchdown state to (α_fDS, α̇_iSS) over T_DS
-  TimeOptimal,  // (4.1): bang-bang on the cyclic curve α̇_c(α) within the constraints (4.2)
+  TimeOptimal,  // (4.1): to the cyclic curve α̇_c(α) at the largest α̈ the constraints allow
+                // (saturated high gain; the projection gives the bounds); ends at α_fDS
 };
 const char* toString(DsAlphaControl c);  // cubic | time_optimal
 
