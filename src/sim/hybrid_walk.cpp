@@ -17,13 +17,6 @@ constexpr int kRoots = 5;
 constexpr double kGroundTolerance = 1e-6;  // [m] swing foot below the ground: early touchdown
 constexpr double kFallHipHeight = 0.3;     // [m]
 
-// Everything the dynamics, the events and the samples need at one state.
-struct PhaseEval {
-  Vec5 qdd;
-  Vec4 gamma_star, error, friction;
-  Vec2 R1, R2;
-};
-
 // SS input–output linearisation: Γ with B A⁻¹ D_Γ Γ = ÿ* + δ_d'' α̇² + B A⁻¹ (C + G), where
 // y = δ − δ_d(α), ẏ = B q̇, B = [−δ_d'(α) | I], ÿ* = −ω² y − 2ω ẏ.
 Vec4 ssControl(const Model& c, const GaitMotion<double>& mo, double w, const Vec5& q,
@@ -114,33 +107,20 @@ class Walker {
   LocalPolynomial<double> alpha_ref_;
   WalkResult out_;
 
-  PhaseEval evaluate(double t, const Eigen::VectorXd& y) const {
-    const Vec5 q = y.head<5>(), qd = y.segment<5>(5);
-    PhaseEval e;
-    e.gamma_star = ss_ ? ssControl(c_, mo_, req_.bandwidth, q, qd, e.error)
-                       : dsControl(c_, mo_, alpha_ref_, req_.bandwidth, req_.friction_coefficient,
-                                   t, q, qd, e.error);
-    e.friction = frictionTorque(p_, jointSpeeds(qd), SignMode::Smooth);
-    if (ss_) {
-      e.qdd = forwardDynamicsSS(p_, q, qd, e.gamma_star, SignMode::Smooth);
-      e.R2.setZero();
-    } else {
-      dsPlant(p_, q, qd, e.gamma_star - e.friction, e.qdd, e.R2);
-    }
-    const Vec2 acc = pinnedComAcceleration(p_, q, qd, e.qdd);
-    e.R1 = Vec2(p_.total_mass * acc(0), p_.total_mass * (acc(1) + p_.gravity)) - e.R2;
-    return e;
+  ClosedLoopEval evaluate(double t, const Eigen::VectorXd& y) const {
+    return evaluateClosedLoop(mo_, c_, p_, req_, ss_ ? nullptr : &alpha_ref_, t, y.head<5>(),
+                              y.segment<5>(5));
   }
 
   void rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& f) const {
-    const PhaseEval e = evaluate(t, y);
+    const ClosedLoopEval e = evaluate(t, y);
     const Vec4 w = jointSpeeds(Vec5(y.segment<5>(5)));
     f.resize(kStateSize);
     f << y.segment<5>(5), e.qdd, w.dot(e.gamma_star), w.dot(e.friction);
   }
 
   void roots(double t, const Eigen::VectorXd& y, Eigen::VectorXd& g) const {
-    const PhaseEval e = evaluate(t, y);
+    const ClosedLoopEval e = evaluate(t, y);
     const Vec5 q = y.head<5>();
     const ChainState<double> st = chainState(p_, q, Vec5(y.segment<5>(5)));
     g.resize(kRoots);
@@ -153,7 +133,7 @@ class Walker {
   }
 
   void record(double t, const Eigen::VectorXd& y, int step) {
-    const PhaseEval e = evaluate(t, y);
+    const ClosedLoopEval e = evaluate(t, y);
     out_.samples.push_back({t, step, ss_, y.head<5>(), y.segment<5>(5), e.qdd, e.gamma_star,
                             e.error, e.R1, e.R2});
     WalkStep& s = out_.steps.back();
@@ -227,9 +207,7 @@ bool Walker::singleSupport(double& t, Eigen::VectorXd& y, int k) {
 bool Walker::doubleSupport(double& t, Eigen::VectorXd& y, int k) {
   ss_ = false;
   t_end_ds_ = t + mo_.T_DS;
-  // DS control of α: from the touchdown state to the cycle's (α_fDS, α̇_iSS) at lift-off.
-  alpha_ref_ = cubicHermite(t, y(0), y(5), t_end_ds_, mo_.ds_alpha(mo_.T_DS).value,
-                            mo_.alphadot_iSS);
+  alpha_ref_ = dsAlphaReference(mo_, t, y(0), y(5));
   const CvodeIntegrator::Result r = phase(t, y, k);
   t = r.t;
   y = r.y;
@@ -258,6 +236,34 @@ WalkResult Walker::run() {
 }
 
 }  // namespace
+
+ClosedLoopEval evaluateClosedLoop(const GaitMotion<double>& mo, const Model& c, const Model& p,
+                                  const WalkRequest& req,
+                                  const LocalPolynomial<double>* ds_alpha_reference, double t,
+                                  const Vec5& q, const Vec5& qd) {
+  ClosedLoopEval e;
+  e.gamma_star = ds_alpha_reference
+                     ? dsControl(c, mo, *ds_alpha_reference, req.bandwidth,
+                                 req.friction_coefficient, t, q, qd, e.error)
+                     : ssControl(c, mo, req.bandwidth, q, qd, e.error);
+  e.friction = frictionTorque(p, jointSpeeds(qd), SignMode::Smooth);
+  if (ds_alpha_reference) {
+    dsPlant(p, q, qd, e.gamma_star - e.friction, e.qdd, e.R2);
+  } else {
+    e.qdd = forwardDynamicsSS(p, q, qd, e.gamma_star, SignMode::Smooth);
+    e.R2.setZero();
+  }
+  const Vec2 acc = pinnedComAcceleration(p, q, qd, e.qdd);
+  e.R1 = Vec2(p.total_mass * acc(0), p.total_mass * (acc(1) + p.gravity)) - e.R2;
+  return e;
+}
+
+// DS control of α: from the touchdown state to the cycle's (α_fDS, α̇_iSS) at lift-off.
+LocalPolynomial<double> dsAlphaReference(const GaitMotion<double>& mo, double t_touchdown,
+                                         double alpha, double alphad) {
+  return cubicHermite(t_touchdown, alpha, alphad, t_touchdown + mo.T_DS,
+                      mo.ds_alpha(mo.T_DS).value, mo.alphadot_iSS);
+}
 
 TouchdownMap impulseFreeTouchdown(double speed_tol) {
   return [speed_tol](const Model& plant, const Vec5& q, const Vec5& qd, Vec5& qp, Vec5& qdp,

@@ -20,20 +20,25 @@ Eigen::MatrixXd finiteDifferenceJacobian(const StepMap& P, const Eigen::VectorXd
   return J;
 }
 
-PoincareLinearisation linearisePoincare(const StepMap& P, const Eigen::VectorXd& x,
-                                        const Eigen::VectorXd& h) {
+PoincareLinearisation analyseJacobian(const Eigen::MatrixXd& J) {
   PoincareLinearisation r;
-  r.fixed_point_residual = (P(x) - x).lpNorm<Eigen::Infinity>();
-  r.jacobian = finiteDifferenceJacobian(P, x, h);
-  const Eigen::EigenSolver<Eigen::MatrixXd> es(r.jacobian);
-  std::vector<Eigen::Index> order(x.size());
+  r.jacobian = J;
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(J);
+  std::vector<Eigen::Index> order(J.rows());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) {
     return std::abs(es.eigenvalues()(a)) > std::abs(es.eigenvalues()(b));
   });
-  r.eigenvalues.resize(x.size());
-  for (Eigen::Index i = 0; i < x.size(); ++i) r.eigenvalues(i) = es.eigenvalues()(order[i]);
+  r.eigenvalues.resize(J.rows());
+  for (Eigen::Index i = 0; i < J.rows(); ++i) r.eigenvalues(i) = es.eigenvalues()(order[i]);
   r.dominant_vector = es.eigenvectors().col(order[0]).normalized();
+  return r;
+}
+
+PoincareLinearisation linearisePoincare(const StepMap& P, const Eigen::VectorXd& x,
+                                        const Eigen::VectorXd& h) {
+  PoincareLinearisation r = analyseJacobian(finiteDifferenceJacobian(P, x, h));
+  r.fixed_point_residual = (P(x) - x).lpNorm<Eigen::Infinity>();
   return r;
 }
 

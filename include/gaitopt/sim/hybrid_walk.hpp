@@ -80,6 +80,24 @@ struct WalkResult {
   Vec5 q_end = Vec5::Zero(), qd_end = Vec5::Zero();  // state at the last lift-off reached
 };
 
+// The closed-loop dynamics at one state: everything the integration, the events and the
+// samples need (exposed for the Poincaré sensitivities, sim/poincare_sensitivity.hpp).
+struct ClosedLoopEval {
+  Vec5 qdd;
+  Vec4 gamma_star, error, friction;
+  Vec2 R1, R2;
+};
+
+// SS when `ds_alpha_reference` is null, else DS tracking that α reference (time t).
+ClosedLoopEval evaluateClosedLoop(const GaitMotion<double>& motion, const Model& controller,
+                                  const Model& plant, const WalkRequest& request,
+                                  const LocalPolynomial<double>* ds_alpha_reference, double t,
+                                  const Vec5& q, const Vec5& qd);
+
+// The DS reference α_r(t) from the touchdown state (t, α, α̇) to (α_fDS, α̇_iSS) at t + T_DS.
+LocalPolynomial<double> dsAlphaReference(const GaitMotion<double>& motion, double t_touchdown,
+                                         double alpha, double alphad);
+
 // `controller` is the model the controller is built on (its friction compensated), `plant` the
 // simulated robot; `evaluation` the gait (motion_computed required).
 WalkResult simulateWalk(const GaitEvaluation<double>& evaluation, const Model& controller,

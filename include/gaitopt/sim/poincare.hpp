@@ -23,6 +23,9 @@ struct PoincareLinearisation {
 Eigen::MatrixXd finiteDifferenceJacobian(const StepMap& P, const Eigen::VectorXd& x,
                                          const Eigen::VectorXd& h);
 
+// Eigenvalues (by decreasing modulus) and dominant eigenvector of a map's Jacobian J.
+PoincareLinearisation analyseJacobian(const Eigen::MatrixXd& J);
+
 PoincareLinearisation linearisePoincare(const StepMap& P, const Eigen::VectorXd& x,
                                         const Eigen::VectorXd& h);
 
