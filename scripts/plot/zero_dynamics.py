@@ -50,17 +50,20 @@ def shade(ax, study):
             ax.axvspan(-high, -low, color=colour, zorder=0, label=label)
 
 
-def map_panel(ax, x, y, failed, title, name, study=None):
+def map_panel(ax, x, y, failed, title, name, study=None, identity=True):
+    """The map y(x); failed starts as crosses on the curve, or at its foot when y is missing."""
     if study is not None:
         shade(ax, study)
     ok = np.isfinite(x) & np.isfinite(y)
-    ax.plot(-x[ok], -y[ok], "o-", color=c.SS_COLOUR, ms=3, lw=1.5, label=title)
+    ax.plot(-x[ok & ~failed], -y[ok & ~failed], "o-", color=c.SS_COLOUR, ms=3, lw=1.5, label=title)
     span = -x[np.isfinite(x)]
-    if span.size:
+    if identity and span.size:
         ax.plot([span.min(), span.max()], [span.min(), span.max()], "k--", lw=1, label="identity")
-    if failed.any():
-        ax.plot(-x[failed & np.isfinite(x)], np.full((failed & np.isfinite(x)).sum(), np.nanmin(-y[ok]) if ok.any() else 0.0),
-                "x", color="C3", label="fell / not walked")
+    marks = failed & np.isfinite(x)
+    if marks.any():
+        foot = np.nanmin(-y[ok]) if ok.any() else 0.0
+        ax.plot(-x[marks], np.where(np.isfinite(y[marks]), -y[marks], foot), "x", color="C3",
+                label="start not walked (outcome in the CSV)")
     ax.set_xlabel(rf"$-\dot\alpha_{{{name}}}(k)$ [rad/s]")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize="small")
@@ -71,7 +74,8 @@ def main(argv):
     table, study = stability_run(run_dir)
     failed = table["outcome"] != "completed"
     fig, (ax_a, ax_ds, ax_ss) = c.figure(1, 3)
-    map_panel(ax_a, table["alphad_iSS"], table["alphad_iDS"], failed, r"$a$: SS + touchdown", "iSS")
+    map_panel(ax_a, table["alphad_iSS"], table["alphad_iDS"], failed, r"$a$: SS + touchdown", "iSS",
+              identity=False)
     ax_a.set_ylabel(r"$-\dot\alpha_{iDS}(k)$ [rad/s]")
     ax_a.set_title("SS + touchdown map (the a of Fig. 4.5)", fontsize="medium")
     map_panel(ax_ds, table["alphad_iDS"], table["next_alphad_iDS"], failed, "step map", "iDS")
