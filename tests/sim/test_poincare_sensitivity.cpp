@@ -3,6 +3,7 @@
 // walking map against central finite differences of the simulated map.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <vector>
 
 #include "gaitopt/sim/poincare_sensitivity.hpp"
 #include "test_default_gait.hpp"
@@ -59,8 +60,16 @@ TEST_CASE("Walking map: sensitivity Jacobian agrees with central finite differen
       return walkingStepSensitivity(f.evaluation, f.model, f.model, req, y, td, false).x_next;
     };
     // Richardson: (4 D(h/2) − D(h)) / 3 removes the O(h²) error of the central differences.
-    const Eigen::MatrixXd fd =
-        (4.0 * finiteDifferenceJacobian(P, x, h / 2) - finiteDifferenceJacobian(P, x, h)) / 3.0;
+    // The sanitizer pass checks three columns (α, α̇, δ̇4) instead of all ten.
+    auto column = [&](Eigen::Index i, double step) {
+      const Eigen::VectorXd e = step * Eigen::VectorXd::Unit(10, i);
+      return Eigen::VectorXd((P(x + e) - P(x - e)) / (2.0 * step));
+    };
+    const std::vector<Eigen::Index> columns =
+        lightTests() ? std::vector<Eigen::Index>{0, 5, 9}
+                     : std::vector<Eigen::Index>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
+    Eigen::MatrixXd fd = s.jacobian;
+    for (Eigen::Index i : columns) fd.col(i) = (4.0 * column(i, h(i) / 2) - column(i, h(i))) / 3.0;
     const double scale = fd.cwiseAbs().maxCoeff();
     const double error = (s.jacobian - fd).cwiseAbs().maxCoeff();
     INFO("max |J| " << scale << ", max |J_sens - J_fd| " << error);
@@ -68,8 +77,9 @@ TEST_CASE("Walking map: sensitivity Jacobian agrees with central finite differen
     CHECK(error < 1e-6 * scale);
     const PoincareLinearisation L = analyseJacobian(s.jacobian);
     CHECK(std::abs(L.eigenvalues(0)) < 1.0);
-    CHECK(std::abs(std::abs(L.eigenvalues(0)) - std::abs(analyseJacobian(fd).eigenvalues(0))) <
-          1e-6 * scale);
+    if (!lightTests())
+      CHECK(std::abs(std::abs(L.eigenvalues(0)) - std::abs(analyseJacobian(fd).eigenvalues(0))) <
+            1e-6 * scale);
   }
   SECTION("default bandwidth: against the simulated map") {
     const StepMap P = walkingStepMap(f.evaluation, f.model, f.model, req);
