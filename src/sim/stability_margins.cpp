@@ -1,7 +1,9 @@
 #include "gaitopt/sim/stability_margins.hpp"
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <functional>
+#include <stdexcept>
 
 #include "gaitopt/model/chain_kinematics.hpp"
 #include "gaitopt/model/dynamics_pinned.hpp"
