@@ -306,6 +306,11 @@ void closedLoopRhs(const ClosedLoop& s, bool ss, const DsReference& ds, double t
   f << qd, e.qdd, w.dot(e.gamma_star), w.dot(e.friction);
 }
 
+double touchdownEvent(const ClosedLoop& s, const Vec5& q) {
+  if (!s.options.touchdown_by_foot_height) return q(0) - s.motion.alpha_fSS;
+  return chainPoint(s.plant.pinned.foot2, chainState(s.plant, q, Vec5(Vec5::Zero())))(1);
+}
+
 void closedLoopEvents(const ClosedLoop& s, bool ss, const DsReference& ds, double t,
                       const Eigen::VectorXd& y, Eigen::VectorXd& g) {
   const Vec5 q = y.head<5>(), qd = y.segment<5>(5);
@@ -317,11 +322,8 @@ void closedLoopEvents(const ClosedLoop& s, bool ss, const DsReference& ds, doubl
   if (ss) {
     const ChainState<double> st = chainState(p, q, qd);
     const double foot2_z = chainPoint(p.pinned.foot2, st)(1);
-    // Touchdown: α reaches α_fSS (a zero-velocity landing only grazes the ground), or, for an
-    // impact landing, the swing foot reaches the ground.
     const bool by_height = s.options.touchdown_by_foot_height;
-    g << (by_height ? foot2_z : q(0) - s.motion.alpha_fSS),
-        by_height ? 1.0 : foot2_z + kGroundTolerance, e.R1(1) + slack,
+    g << touchdownEvent(s, q), by_height ? 1.0 : foot2_z + kGroundTolerance, e.R1(1) + slack,
         chainPoint(p.pinned.hip, st)(1) - kFallHipHeight, -qd(0), mu * e.R1(1) - e.R1(0) + slack,
         mu * e.R1(1) + e.R1(0) + slack;
   } else {

@@ -8,8 +8,6 @@
 #include "gaitopt/model/forward_dynamics.hpp"
 
 namespace gaitopt {
-namespace {
-
 ClosedLoopOptions closedLoopOptions(const WalkRequest& r) {
   ClosedLoopOptions o;
   o.bandwidth = r.bandwidth;
@@ -22,6 +20,8 @@ ClosedLoopOptions closedLoopOptions(const WalkRequest& r) {
   o.ds_control = r.ds_control;
   return o;
 }
+
+namespace {
 
 class Walker {
  public:

@@ -20,6 +20,7 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 STEP_RUN = os.path.join(ROOT, "tests", "data", "sample_run")
 SWEEP_RUN = os.path.join(ROOT, "tests", "data", "sample_sweep")
+STABILITY_RUN = os.path.join(ROOT, "tests", "data", "sample_stability")
 EXPECTED_SIZE = (1200, 700)  # FIG_SIZE (12 × 7 in) at 100 dpi
 
 
@@ -58,6 +59,7 @@ def check_command(binary, scratch):
 
 def main(binary, kind):
     good, wrong, wrong_name = (SWEEP_RUN, STEP_RUN, "a step run directory") if kind == "sweep" \
+        else (STABILITY_RUN, STEP_RUN, "a step run directory") if kind == "zero_dynamics" \
         else (STEP_RUN, SWEEP_RUN, "a sweep directory")
     with tempfile.TemporaryDirectory(prefix=f"gaitopt_plot_{kind}_") as scratch:
         png = os.path.join(scratch, f"{kind}.png")

@@ -103,6 +103,9 @@ enum DsEvent {
   kFrontSlipForward,
   kFrontSlipBackward
 };
+// The touchdown event alone (kTouchdown): α reaches α_fSS (a zero-velocity landing only
+// grazes the ground), or, for an impact landing, the swing foot reaches the ground.
+double touchdownEvent(const ClosedLoop& s, const Vec5& q);
 void closedLoopEvents(const ClosedLoop& s, bool single_support, const DsReference& ds, double t,
                       const Eigen::VectorXd& y, Eigen::VectorXd& g);
 

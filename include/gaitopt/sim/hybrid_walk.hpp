@@ -76,6 +76,9 @@ struct WalkResult {
 // impact landing.
 void configureForGait(const GaitOptions& options, WalkRequest& request);
 
+// The closed loop's options of a request (sim/closed_loop.hpp).
+ClosedLoopOptions closedLoopOptions(const WalkRequest& request);
+
 // Energy balance of a whole step, relative: (E_end − E_start − (W − F − impact loss)) /
 // max(|E_start|, |W|, 1 J); round-off only when the plant's contacts do no work.
 double stepEnergyBalanceError(const WalkStep& s);
