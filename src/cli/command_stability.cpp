@@ -66,13 +66,15 @@ void writeMargin(JsonWriter& w, const char* name, const Margin& m, const char* u
 void writeMargins(JsonWriter& w, const GaitFile& gait, const GaitEvaluation<double>& e,
                   const Model& model, const WalkRequest& req) {
   const MarginRequest mr;
-  // A perturbed step lands with non-zero velocity: the rigid impact with friction.
-  const TouchdownMap td =
-      gaitTouchdown(gait.options, "algebraic", gait.options.friction_coefficient);
+  // A perturbed step lands with non-zero velocity: the rigid impact with friction; when it
+  // lifts the rear foot the new SS starts at once (the DS of the cycle is skipped, not failed).
+  ImpactOptions io;
+  io.mu = gait.options.friction_coefficient;
+  const TouchdownMap td = impactTouchdown(ImpactModelKind::Algebraic, io, false);
   w.key("margins").beginObject();
   w.key("recovery_steps").value(mr.steps);
   w.key("tolerance").value(mr.tolerance);
-  w.key("touchdown").value("algebraic rigid impact");
+  w.key("touchdown").value("algebraic rigid impact, SS at once when the rear foot lifts");
   writeMargin(w, "push_forward", largestPush(e, model, req, 1, mr, td), "m/s");
   writeMargin(w, "push_backward", largestPush(e, model, req, -1, mr, td), "m/s");
   writeMargin(w, "trunk_payload",

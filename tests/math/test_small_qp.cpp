@@ -11,28 +11,22 @@ TEST_CASE("Small QP: hand-solved weighted projections", "[sim][qp]") {
   Eigen::MatrixXd G(3, 2);
   G << 1, 1, -1, 0, 0, -1;  // x1 + x2 ≤ 1, x ≥ 0
   const Eigen::Vector3d h(1, 0, 0);
-  SECTION("equal weights: onto the face x1 + x2 = 1") {
-    const SmallQpResult r =
-        solveLeastDistanceQp(G, h, Eigen::Vector2d(1, 1), Eigen::Vector2d(2, 2));
+  // Projection of x0 with weights w: the expected point and number of active constraints.
+  auto check = [&](const Eigen::Vector2d& w, const Eigen::Vector2d& x0, int active,
+                   const Eigen::Vector2d& expected) {
+    const SmallQpResult r = solveLeastDistanceQp(G, h, w, x0);
     REQUIRE(r.feasible);
-    CHECK(r.active == 1);
-    CHECK(r.x(0) == Approx(0.5).margin(1e-12));
-    CHECK(r.x(1) == Approx(0.5).margin(1e-12));
+    CHECK(r.active == active);
+    CHECK((r.x - expected).cwiseAbs().maxCoeff() < 1e-12);
+  };
+  SECTION("equal weights: onto the face x1 + x2 = 1") {
+    check(Eigen::Vector2d(1, 1), Eigen::Vector2d(2, 2), 1, Eigen::Vector2d(0.5, 0.5));
   }
   SECTION("weights (1, 4): the corner (0, 1), x1 ≥ 0 with multiplier 4") {
-    const SmallQpResult r =
-        solveLeastDistanceQp(G, h, Eigen::Vector2d(1, 4), Eigen::Vector2d(2, 2));
-    REQUIRE(r.feasible);
-    CHECK(r.active == 2);
-    CHECK(r.x(0) == Approx(0.0).margin(1e-12));
-    CHECK(r.x(1) == Approx(1.0).margin(1e-12));
+    check(Eigen::Vector2d(1, 4), Eigen::Vector2d(2, 2), 2, Eigen::Vector2d(0.0, 1.0));
   }
   SECTION("a feasible x0 is returned unchanged") {
-    const SmallQpResult r =
-        solveLeastDistanceQp(G, h, Eigen::Vector2d(1, 1), Eigen::Vector2d(0.2, 0.3));
-    REQUIRE(r.feasible);
-    CHECK(r.active == 0);
-    CHECK(r.x == Eigen::Vector2d(0.2, 0.3));
+    check(Eigen::Vector2d(1, 1), Eigen::Vector2d(0.2, 0.3), 0, Eigen::Vector2d(0.2, 0.3));
   }
   SECTION("x1 ≤ −1 and x1 ≥ 0: infeasible") {
     Eigen::MatrixXd G2(2, 2);

@@ -9,11 +9,17 @@
 
 namespace gaitopt::test {
 
+// The analysis' closed loop: without the (non-smooth) torque projection, README "stability".
+WalkRequest smoothRequest() {
+  WalkRequest req;
+  req.torque_limits = false;
+  return req;
+}
+
 TEST_CASE("Zero-dynamics map: the gait's cycle is a fixed point reached in one step",
           "[sim][poincare][zero_dynamics]") {
   const DefaultGait f;
-  WalkRequest req;
-  req.torque_limits = false;  // the smooth (unsaturated) closed loop: see README "stability"
+  const WalkRequest req = smoothRequest();
   ZeroDynamicsRequest zr;
   zr.range = 0.015;
   zr.points = 7;  // starts α̇* (1 + 0.005 k), k = −3..3
@@ -49,11 +55,10 @@ TEST_CASE("Zero-dynamics map: the gait's cycle is a fixed point reached in one s
 
 TEST_CASE("Push margin: the bisection brackets the largest recovered push",
           "[sim][poincare][margins]") {
-  const DefaultGait f;
-  WalkRequest req;
-  req.torque_limits = false;  // the smooth (unsaturated) closed loop: see README "stability"
   MarginRequest mr;
   mr.push_upper = 0.5;
+  const DefaultGait f;
+  const WalkRequest req = smoothRequest();
   mr.push_resolution = 2e-3;
   std::string why;
   // With the impulse-free touchdown any push that leaves an output error at touchdown fails.
