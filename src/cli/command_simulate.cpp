@@ -14,6 +14,7 @@
 #include "gaitopt/io/robot_file.hpp"
 #include "gaitopt/model/chain_kinematics.hpp"
 #include "gaitopt/sim/hybrid_walk.hpp"
+#include "gaitopt/sim/impact_touchdown.hpp"
 
 namespace gaitopt::cli {
 namespace {
@@ -21,9 +22,10 @@ namespace {
 namespace fs = std::filesystem;
 
 struct SimulateArgs {
-  std::string gait, out, plant;
+  std::string gait, out, plant, impact = "auto", ds_control = "cubic";
   int steps = 20;
-  double bandwidth = 40.0, sample_rate = 200.0;
+  double bandwidth = 40.0, sample_rate = 200.0, ground_mu = -1.0;
+  bool no_torque_limits = false;
   std::vector<std::string> perturb;
 };
 
@@ -87,31 +89,47 @@ std::string stepsCsv(const WalkResult& r) {
   std::ostringstream o;
   o << "step,t_start,t_touchdown,t_liftoff,alphad_start,max_output_error,"
        "touchdown_event_residual,touchdown_foot_speed,energy_start,energy_touchdown,motor_work,"
-       "friction_loss,min_normal_force\n";
+       "friction_loss,min_normal_force,impact_behaviour,impact_energy_loss,impulse1_x,impulse1_z,"
+       "impulse2_x,impulse2_z,energy_end,step_motor_work,step_friction_loss,energy_balance_error,"
+       "saturated_samples,first_saturation_time\n";
   for (const WalkStep& s : r.steps)
     o << s.step << ',' << formatDouble(s.t_start) << ',' << formatDouble(s.t_touchdown) << ','
       << formatDouble(s.t_liftoff) << ',' << formatDouble(s.alphad_start) << ','
       << formatDouble(s.max_output_error) << ',' << formatDouble(s.touchdown_event_residual)
       << ',' << formatDouble(s.touchdown_foot_speed) << ',' << formatDouble(s.energy_start)
       << ',' << formatDouble(s.energy_touchdown) << ',' << formatDouble(s.motor_work) << ','
-      << formatDouble(s.friction_loss) << ',' << formatDouble(s.min_normal_force) << '\n';
+      << formatDouble(s.friction_loss) << ',' << formatDouble(s.min_normal_force) << ','
+      << s.impact_behaviour << ',' << formatDouble(s.impact_energy_loss) << ','
+      << formatDouble(s.impulse1(0)) << ',' << formatDouble(s.impulse1(1)) << ','
+      << formatDouble(s.impulse2(0)) << ',' << formatDouble(s.impulse2(1)) << ','
+      << formatDouble(s.energy_end) << ',' << formatDouble(s.step_motor_work) << ','
+      << formatDouble(s.step_friction_loss) << ',' << formatDouble(stepEnergyBalanceError(s))
+      << ',' << s.saturated_samples << ',' << formatDouble(s.first_saturation_time) << '\n';
   return o.str();
 }
 
-// Converged: the last step started on the cycle's α̇ and tracked its outputs to 1e-6.
+// Converged to a cycle: the last step started on the cycle's α̇ (to 1e-6) and repeated the
+// previous step's largest output error (to 1e-6 rad).
 bool converged(const WalkResult& r, double alphadot_iSS) {
-  return r.outcome == WalkOutcome::Completed && !r.steps.empty() &&
-         std::abs(r.steps.back().alphad_start - alphadot_iSS) < 1e-6 &&
-         r.steps.back().max_output_error < 1e-6;
+  const std::size_t n = r.steps.size();
+  if (r.outcome != WalkOutcome::Completed || n < 2) return false;
+  return std::abs(r.steps[n - 1].alphad_start - alphadot_iSS) < 1e-6 &&
+         std::abs(r.steps[n - 1].max_output_error - r.steps[n - 2].max_output_error) < 1e-6;
+}
+
+// Tracks the reference: converged with the outputs on the virtual constraints (to 1e-6 rad).
+bool tracksReference(const WalkResult& r, double alphadot_iSS) {
+  return converged(r, alphadot_iSS) && r.steps.back().max_output_error < 1e-6;
 }
 
 std::string summaryJson(const WalkResult& r, const SimulateArgs& a, const WalkRequest& req,
-                        double alphadot_iSS) {
+                        const GaitOptions& options, double alphadot_iSS) {
   JsonWriter w;
   w.beginObject();
   w.key("outcome").value(outcomeName(r.outcome));
   w.key("message").value(r.message);
   w.key("converged_to_cycle").value(converged(r, alphadot_iSS));
+  w.key("tracks_reference").value(tracksReference(r, alphadot_iSS));
   w.key("steps_requested").value(a.steps);
   w.key("steps_completed")
       .value(static_cast<int>(r.steps.size()) - (r.outcome == WalkOutcome::Completed ? 0 : 1));
@@ -122,6 +140,13 @@ std::string summaryJson(const WalkResult& r, const SimulateArgs& a, const WalkRe
   w.key("alphad").value(req.dalphad0);
   w.key("dq").value(req.dq0);
   w.endObject();
+  w.key("impact_model").value(resolvedImpactModel(options, a.impact));
+  w.key("ds_control").value(toString(req.ds_control));
+  w.key("torque_limits").value(req.torque_limits);
+  w.key("ground_friction_coefficient").value(req.plant_friction_coefficient);
+  int saturated = 0;
+  for (const WalkStep& s : r.steps) saturated += s.saturated_samples;
+  w.key("saturated_samples").value(saturated);
   w.key("cycle_alphad_start").value(alphadot_iSS);
   w.key("last_alphad_start").value(r.steps.empty() ? 0.0 : r.steps.back().alphad_start);
   w.endObject();
@@ -154,6 +179,20 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--sample-rate", args->sample_rate, "trajectory rows [Hz]")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 1e5));
+  cmd->add_option("--impact", args->impact,
+                  "Touchdown model: auto (impulse-free for a zero-velocity landing, else "
+                  "algebraic), none (impulse-free only), algebraic, differential")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "none", "algebraic", "differential"}));
+  cmd->add_option("--ds-control", args->ds_control, "DS control of alpha: cubic, time_optimal")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"cubic", "time_optimal"}));
+  cmd->add_option("--ground-mu", args->ground_mu,
+                  "Friction coefficient of the plant's ground (slip checks, impacts); default: "
+                  "the gait's friction_coefficient")
+      ->check(CLI::Range(0.0, 100.0));
+  cmd->add_flag("--no-torque-limits", args->no_torque_limits,
+                "Do not project the inputs on the torque envelope and contact constraints");
   cmd->callback([args, &exit_code]() {
     const GaitFile gait = loadGaitFile(args->gait);
     WalkRequest req;
@@ -161,7 +200,11 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
     req.steps = args->steps;
     req.bandwidth = args->bandwidth;
     req.sample_rate = args->sample_rate;
-    req.friction_coefficient = gait.options.friction_coefficient;
+    configureForGait(gait.options, req);
+    if (args->ground_mu >= 0.0) req.plant_friction_coefficient = args->ground_mu;
+    req.torque_limits = !args->no_torque_limits;
+    req.ds_control = args->ds_control == "cubic" ? DsAlphaControl::Cubic
+                                                 : DsAlphaControl::TimeOptimal;
     const Model controller = buildModel(gait.robot, gait.model_options);
     const Model plant =
         args->plant.empty() ? controller : buildModel(loadRobot(args->plant), gait.model_options);
@@ -173,14 +216,16 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
       exit_code = kExitUndefined;
       return;
     }
-    const WalkResult r = simulateWalk(e, controller, plant, req);
+    const WalkResult r = simulateWalk(
+        e, controller, plant, req,
+        gaitTouchdown(gait.options, args->impact, req.plant_friction_coefficient));
     ExportRequest meta_req;
     meta_req.steps = args->steps;
     meta_req.rate = args->sample_rate;
     const fs::path dir(args->out);
     fs::create_directories(dir);
     writeFileAtomically((dir / "summary.json").string(),
-                        summaryJson(r, *args, req, e.motion.alphadot_iSS));
+                        summaryJson(r, *args, req, gait.options, e.motion.alphadot_iSS));
     writeFileAtomically((dir / "steps.csv").string(), stepsCsv(r));
     writeFileAtomically((dir / "trajectory.csv").string(),
                         exportCsv(exportMetadata(gait, e, meta_req), exportRows(plant, r)));
@@ -189,7 +234,8 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
     std::cout << "simulate: " << outcomeName(r.outcome)
               << (r.message.empty() ? "" : " (" + r.message + ")") << ", "
               << r.steps.size() << " steps, converged "
-              << (converged(r, e.motion.alphadot_iSS) ? "yes" : "no") << " -> " << args->out
+              << (converged(r, e.motion.alphadot_iSS) ? "yes" : "no") << ", tracks reference "
+              << (tracksReference(r, e.motion.alphadot_iSS) ? "yes" : "no") << " -> " << args->out
               << "\n";
     exit_code = r.outcome == WalkOutcome::Completed ? 0 : kExitUndefined;
   });

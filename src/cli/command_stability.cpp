@@ -13,7 +13,10 @@
 #include "gaitopt/io/atomic_file.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/io/json_writer.hpp"
-#include "gaitopt/sim/poincare.hpp"
+#include "gaitopt/sim/impact_touchdown.hpp"
+#include "gaitopt/sim/poincare_sensitivity.hpp"
+#include "gaitopt/sim/stability_margins.hpp"
+#include "gaitopt/sim/zero_dynamics_map.hpp"
 
 namespace gaitopt::cli {
 namespace {
@@ -21,42 +24,76 @@ namespace {
 namespace fs = std::filesystem;
 
 struct StabilityArgs {
-  std::string gait, out;
-  double step = 1e-4, bandwidth = 40.0, range = 0.3;
-  int points = 61;
+  std::string gait, out, jacobian = "sensitivity";
+  double step = 1e-4, bandwidth = 40.0, range = 0.05;
+  int points = 51;
 };
 
-struct MapPoint {
-  double alphad, next;
-  std::string outcome;
-};
-
-// α̇_iSS(k) → α̇_iSS(k + 1) on the virtual constraints (§4.2.2, with this DS controller).
-std::vector<MapPoint> zeroDynamicsMap(const StepMap& P, const Eigen::VectorXd& x, double range,
-                                      int points) {
-  std::vector<MapPoint> out;
-  for (int i = 0; i < points; ++i) {
-    const double alphad = x(5) * (1.0 + range * (2.0 * i / (points - 1) - 1.0));
-    Eigen::VectorXd xi = x;
-    xi.tail<5>() *= alphad / x(5);
-    try {
-      out.push_back({alphad, P(xi)(5), "completed"});
-    } catch (const std::runtime_error& e) {
-      const std::string what = e.what();
-      const std::size_t a = what.find(": ") + 2;
-      out.push_back({alphad, NAN, what.substr(a, what.find(':', a) - a)});
-    }
-  }
-  return out;
+std::string mapCsv(const ZeroDynamicsStudy& z) {
+  std::ostringstream o;
+  o << "alphad_iSS,alphad_iDS,next_alphad_iSS,next_alphad_iDS,steps_to_cycle,outcome\n";
+  auto num = [](double v) { return std::isnan(v) ? std::string() : formatDouble(v); };
+  for (const ZeroDynamicsPoint& p : z.points)
+    o << formatDouble(p.alphad_iSS) << ',' << num(p.alphad_iDS) << ',' << num(p.next_alphad_iSS)
+      << ',' << num(p.next_alphad_iDS) << ',' << p.steps_to_cycle << ',' << p.outcome << '\n';
+  return o.str();
 }
 
-std::string mapCsv(const std::vector<MapPoint>& m) {
-  std::ostringstream o;
-  o << "alphad_iSS,next_alphad_iSS,outcome\n";
-  for (const MapPoint& p : m)
-    o << formatDouble(p.alphad) << ',' << (std::isnan(p.next) ? "" : formatDouble(p.next)) << ','
-      << p.outcome << '\n';
-  return o.str();
+void writeZeroDynamics(JsonWriter& w, const ZeroDynamicsStudy& z, int max_steps) {
+  w.key("zero_dynamics").beginObject();
+  w.key("section").value("SS start on the virtual constraints, alphad_iSS");
+  w.key("fixed_point").value(z.fixed_point);
+  w.key("fixed_point_residual").value(z.fixed_point_residual);
+  w.key("slope").value(z.slope);
+  w.key("stable").value(z.stable);
+  w.key("one_step_region").value(Eigen::Vector2d(z.one_step_low, z.one_step_high));
+  w.key("global_region").value(Eigen::Vector2d(z.global_low, z.global_high));
+  w.key("global_max_steps").value(max_steps);
+  w.key("resolution").value(z.resolution);
+  w.endObject();
+}
+
+void writeMargin(JsonWriter& w, const char* name, const Margin& m, const char* unit) {
+  w.key(name).beginObject();
+  w.key("value").value(m.value);
+  w.key("resolution").value(m.resolution);
+  w.key("unit").value(unit);
+  w.key("bracket_reached").value(m.bracket_reached);
+  w.key("limit").value(m.limit);
+  w.endObject();
+}
+
+void writeMargins(JsonWriter& w, const GaitFile& gait, const GaitEvaluation<double>& e,
+                  const Model& model, const WalkRequest& req) {
+  const MarginRequest mr;
+  // A perturbed step lands with non-zero velocity: the rigid impact with friction; when it
+  // lifts the rear foot the new SS starts at once (the DS of the cycle is skipped, not failed).
+  ImpactOptions io;
+  io.mu = gait.options.friction_coefficient;
+  const TouchdownMap td = impactTouchdown(ImpactModelKind::Algebraic, io, false);
+  w.key("margins").beginObject();
+  w.key("recovery_steps").value(mr.steps);
+  w.key("tolerance").value(mr.tolerance);
+  w.key("touchdown").value("algebraic rigid impact, SS at once when the rear foot lifts");
+  writeMargin(w, "push_forward", largestPush(e, model, req, 1, mr, td), "m/s");
+  writeMargin(w, "push_backward", largestPush(e, model, req, -1, mr, td), "m/s");
+  writeMargin(w, "trunk_payload",
+              largestPayload(e, gait.robot, gait.model_options, req, mr, td), "kg");
+  w.key("slope").null();  // not computed: the plant has flat ground
+  w.endObject();
+}
+
+// Samples of one cycle step where the torque projection acts: 0 means the linearised field is
+// the smooth unsaturated one.
+int saturatedOnCycle(const GaitEvaluation<double>& e, const Model& model, const WalkRequest& base,
+                     const Eigen::VectorXd& x, const TouchdownMap& td) {
+  WalkRequest req = base;
+  req.steps = 1;
+  req.use_initial_state = true;
+  req.q_init = x.head<5>();
+  req.qd_init = x.tail<5>();
+  const WalkResult r = simulateWalk(e, model, model, req, td);
+  return r.steps.empty() ? 0 : r.steps.front().saturated_samples;
 }
 
 std::string matrixCsv(const Eigen::MatrixXd& J) {
@@ -75,12 +112,19 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "stability",
       "Poincare analysis of the closed-loop gait (gaitopt simulate's controller): fixed point, "
-      "Jacobian on all DOF by central differences, eigenvalues, power iteration (4.61), and the "
+      "Jacobian on all DOF (variational equations or central differences), eigenvalues, power iteration (4.61), and the "
       "1-D map of alphad at SS start. Writes OUT/stability.json, jacobian.csv, "
       "zero_dynamics_map.csv. Exit 3 if the cycle is unstable or not a fixed point.");
   cmd->add_option("--gait", a->gait, "Gait YAML file")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out", a->out, "Output directory")->required();
-  cmd->add_option("--fd-step", a->step, "Finite-difference step on every state component")
+  cmd->add_option("--jacobian", a->jacobian,
+                  "Poincare Jacobian: variational equations along the hybrid orbit "
+                  "(sensitivity) or central differences of the map (fd)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"sensitivity", "fd"}));
+  cmd->add_option("--fd-step", a->step,
+                  "Finite-difference step on every state component (--jacobian fd, power "
+                  "iteration box)")
       ->capture_default_str()
       ->check(CLI::Range(1e-9, 1e-1));
   cmd->add_option("--bandwidth", a->bandwidth, "Output bandwidth omega [rad/s]")
@@ -105,15 +149,27 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
     const Model model = buildModel(gait.robot, gait.model_options);
     WalkRequest req;
     req.bandwidth = a->bandwidth;
-    req.friction_coefficient = gait.options.friction_coefficient;
+    configureForGait(gait.options, req);
     req.tolerances = {1e-12, 1e-14};  // the map's noise must stay far below the FD step
-    const StepMap P = walkingStepMap(e, model, model, req);
+    // The linearisation needs a smooth field: the unsaturated controller (the projection on
+    // the torque limits is non-smooth); margins and the saturation count use the projection.
+    WalkRequest analysis = req;
+    analysis.torque_limits = false;
+    const TouchdownMap td = gaitTouchdown(gait.options, "auto", gait.options.friction_coefficient);
+    const StepMap P = walkingStepMap(e, model, model, analysis, td);
     const Eigen::VectorXd x = walkingCycleState(e.motion);
-    const PoincareLinearisation L = linearisePoincare(P, x, Eigen::VectorXd::Constant(10, a->step));
+    const PoincareLinearisation L =
+        a->jacobian == "fd"
+            ? linearisePoincare(P, x, Eigen::VectorXd::Constant(10, a->step))
+            : linearisePoincareBySensitivity(e, model, model, analysis, x, td);
     Eigen::VectorXd power_vector;
     const double power =
         powerIteration(P, x, Eigen::VectorXd::Constant(10, a->step), 6, power_vector);
-    const std::vector<MapPoint> map = zeroDynamicsMap(P, x, a->range, a->points);
+    ZeroDynamicsRequest zr;
+    zr.range = a->range;
+    zr.points = a->points;
+    zr.touchdown = td;
+    const ZeroDynamicsStudy zd = studyZeroDynamics(e, model, model, analysis, zr);
 
     JsonWriter w;
     w.beginObject();
@@ -121,6 +177,7 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
     w.key("section").value("single-support start (after lift-off), x = (q, qd)");
     w.key("fixed_point").value(x);
     w.key("fixed_point_residual").value(L.fixed_point_residual);
+    w.key("jacobian_method").value(a->jacobian);
     w.key("fd_step").value(a->step);
     w.key("bandwidth").value(a->bandwidth);
     w.key("eigenvalues_real").value(Eigen::VectorXd(L.eigenvalues.real()));
@@ -133,12 +190,16 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
     w.key("iterations").value(6);
     w.endObject();
     w.key("stable").value(std::abs(L.eigenvalues(0)) < 1.0);
+    w.key("torque_limits_in_analysis").value(false);
+    w.key("saturated_samples_on_cycle").value(saturatedOnCycle(e, model, req, x, td));
+    writeZeroDynamics(w, zd, zr.max_steps);
+    writeMargins(w, gait, e, model, req);
     w.endObject();
     const fs::path dir(a->out);
     fs::create_directories(dir);
     writeFileAtomically((dir / "stability.json").string(), w.str() + "\n");
     writeFileAtomically((dir / "jacobian.csv").string(), matrixCsv(L.jacobian));
-    writeFileAtomically((dir / "zero_dynamics_map.csv").string(), mapCsv(map));
+    writeFileAtomically((dir / "zero_dynamics_map.csv").string(), mapCsv(zd));
     const bool stable = std::abs(L.eigenvalues(0)) < 1.0 && L.fixed_point_residual < 1e-6;
     std::cout << "stability: dominant |eigenvalue| " << shortNumber(std::abs(L.eigenvalues(0)))
               << ", power iteration " << shortNumber(power) << ", fixed-point residual "

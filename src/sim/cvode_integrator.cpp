@@ -61,7 +61,15 @@ CvodeIntegrator::CvodeIntegrator(int n, const Rhs& rhs, int n_roots, const Roots
   if (!s.mem) throw std::runtime_error("CVODE: CVodeCreate failed");
   check(CVodeInit(s.mem, Impl::f, 0.0, s.y), "CVodeInit");
   check(CVodeSetUserData(s.mem, &s), "CVodeSetUserData");
-  check(CVodeSStolerances(s.mem, tol.relative, tol.absolute), "CVodeSStolerances");
+  if (tol.absolute_per_component.size() == n) {
+    N_Vector atol = N_VNew_Serial(n, s.ctx);
+    Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(atol), n) = tol.absolute_per_component;
+    const int flag = CVodeSVtolerances(s.mem, tol.relative, atol);  // copies atol
+    N_VDestroy(atol);
+    check(flag, "CVodeSVtolerances");
+  } else {
+    check(CVodeSStolerances(s.mem, tol.relative, tol.absolute), "CVodeSStolerances");
+  }
   s.nls = SUNNonlinSol_FixedPoint(s.y, 0, s.ctx);
   check(CVodeSetNonlinearSolver(s.mem, s.nls), "CVodeSetNonlinearSolver");
   check(CVodeSetMaxNumSteps(s.mem, 100000), "CVodeSetMaxNumSteps");

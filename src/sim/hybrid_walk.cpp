@@ -1,164 +1,67 @@
 #include "gaitopt/sim/hybrid_walk.hpp"
 
-#include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
-#include "gaitopt/gait/ds_force_distribution.hpp"
-#include "gaitopt/gait/leg_geometry.hpp"
 #include "gaitopt/model/dynamics_pinned.hpp"
 #include "gaitopt/model/forward_dynamics.hpp"
-#include "gaitopt/model/inverse_dynamics.hpp"
 
 namespace gaitopt {
+ClosedLoopOptions closedLoopOptions(const WalkRequest& r) {
+  ClosedLoopOptions o;
+  o.bandwidth = r.bandwidth;
+  o.friction_coefficient = r.friction_coefficient;
+  o.plant_friction_coefficient =
+      r.plant_friction_coefficient < 0.0 ? r.friction_coefficient : r.plant_friction_coefficient;
+  o.torque_limits = r.torque_limits;
+  o.full_torque_envelope = r.full_torque_envelope;
+  o.touchdown_by_foot_height = r.touchdown_by_foot_height;
+  o.ds_control = r.ds_control;
+  return o;
+}
+
 namespace {
-
-constexpr int kStateSize = 12;  // q, q̇, ∫ωᵀΓ* dt, ∫ωᵀ(Γ* − Γ) dt
-constexpr int kRoots = 5;
-constexpr double kGroundTolerance = 1e-6;  // [m] swing foot below the ground: early touchdown
-constexpr double kFallHipHeight = 0.3;     // [m]
-
-// Everything the dynamics, the events and the samples need at one state.
-struct PhaseEval {
-  Vec5 qdd;
-  Vec4 gamma_star, error, friction;
-  Vec2 R1, R2;
-};
-
-// SS input–output linearisation: Γ with B A⁻¹ D_Γ Γ = ÿ* + δ_d'' α̇² + B A⁻¹ (C + G), where
-// y = δ − δ_d(α), ẏ = B q̇, B = [−δ_d'(α) | I], ÿ* = −ω² y − 2ω ẏ.
-Vec4 ssControl(const Model& c, const GaitMotion<double>& mo, double w, const Vec5& q,
-               const Vec5& qd, Vec4& y) {
-  const PinnedTerms<double> t = pinnedTerms(c, q, qd);
-  Eigen::Matrix<double, 4, 5> B = Eigen::Matrix<double, 4, 5>::Zero();
-  Vec4 curvature, yd;
-  for (int j = 0; j < 4; ++j) {
-    const PolyValue<double> v = mo.ss_path[j](q(0));
-    B(j, 0) = -v.first;
-    B(j, j + 1) = 1.0;
-    y(j) = q(j + 1) - v.value;
-    curvature(j) = v.second * qd(0) * qd(0);
-  }
-  yd = B * qd;
-  const Eigen::LDLT<Mat5> A(t.A);
-  const Eigen::Matrix<double, 5, 4> Ainv_D = A.solve(c.D_Gamma);
-  const Vec5 Ainv_CG = A.solve(Vec5(t.C + t.G));
-  const Eigen::Matrix4d Lg = B * Ainv_D;
-  const Vec4 target = -w * w * y - 2.0 * w * yd;
-  const Vec4 gamma = Lg.partialPivLu().solve(Vec4(target + curvature + B * Ainv_CG));
-  return gamma + frictionTorque(c, jointSpeeds(qd), SignMode::Smooth);
-}
-
-// DS: (α, δ1, δ2) track α_r(t) and δ_d(α_r(t)); δ3, δ4 accelerations from the closed chain
-// (1.35); R2x, the fourth input, of least Γ*ᵀΓ* within both friction cones (the 1-D QP
-// (3.68)–(3.70) of the gait's force split).
-Vec4 dsControl(const Model& c, const GaitMotion<double>& mo, const LocalPolynomial<double>& ar,
-               double w, double mu, double t, const Vec5& q, const Vec5& qd, Vec4& err) {
-  const PolyValue<double> a = ar(t);
-  const PolyValue<double> d1 = mo.ds_delta1(a.value), d2 = mo.ds_delta2(a.value);
-  const Eigen::Vector3d p(a.value, d1.value, d2.value);
-  const Eigen::Vector3d pd(a.first, d1.first * a.first, d2.first * a.first);
-  const Eigen::Vector3d pdd(a.second, d1.second * a.first * a.first + d1.first * a.second,
-                            d2.second * a.first * a.first + d2.first * a.second);
-  const Eigen::Vector3d e = p - q.head<3>(), ed = pd - qd.head<3>();
-  err << e, 0.0;
-  const Eigen::Vector3d acc = pdd + w * w * e + 2.0 * w * ed;
-  const ChainState<double> st = chainState(c, q, qd);
-  const Matrix25<double> D2 = chainPointJacobian(c, c.pinned.foot2, st);
-  const Vec2 H2 = chainPointBias(c.pinned.foot2, st);
-  const Vec2 a34 = -D2.rightCols<2>().inverse() * (D2.leftCols<3>() * acc + H2);
-  Vec5 qdd;
-  qdd << acc, a34;
-  const DoubleSupportAffine<double> aff = doubleSupportAffine(c, q, qd, qdd, SignMode::Smooth);
-  const double M = c.total_mass;
-  const double R1z0 = M * (aff.com_acceleration(1) + c.gravity) - aff.R2z0;  // (3.59)
-  const DsBounds<double> bounds =
-      r2xBounds(R1z0, aff.R2z0, M * aff.com_acceleration(0), mu, kBranchFree);  // (3.66)
-  return aff.J - aff.K * r2xMinTorque(aff.J, aff.K, bounds, kBranchFree).r2x;  // (3.68)–(3.70)
-}
-
-// Plant in DS: A q̈ − D2ᵀ R2 = D_Γ Γ − C − G and D2 q̈ + H2 = 0.
-void dsPlant(const Model& p, const Vec5& q, const Vec5& qd, const Vec4& gamma, Vec5& qdd,
-             Vec2& R2) {
-  const PinnedTerms<double> t = pinnedTerms(p, q, qd);
-  Eigen::Matrix<double, 7, 7> K = Eigen::Matrix<double, 7, 7>::Zero();
-  K.topLeftCorner<5, 5>() = t.A;
-  K.topRightCorner<5, 2>() = -t.D2.transpose();
-  K.bottomLeftCorner<2, 5>() = t.D2;
-  Eigen::Matrix<double, 7, 1> rhs;
-  rhs << p.D_Gamma * gamma - t.C - t.G, -t.H2;
-  const Eigen::Matrix<double, 7, 1> x = K.partialPivLu().solve(rhs);
-  qdd = x.head<5>();
-  R2 = x.tail<2>();
-}
 
 class Walker {
  public:
   Walker(const GaitEvaluation<double>& e, const Model& c, const Model& p, const WalkRequest& r,
          const TouchdownMap& td)
-      : mo_(e.motion), c_(c), p_(p), req_(r), td_(td),
-        cv_(kStateSize, [this](double t, const Eigen::VectorXd& y, Eigen::VectorXd& f) { rhs(t, y, f); },
-            kRoots, [this](double t, const Eigen::VectorXd& y, Eigen::VectorXd& g) { roots(t, y, g); },
+      : sys_{e.motion, c, p, closedLoopOptions(r)},
+        mo_(e.motion),
+        req_(r),
+        td_(td),
+        cv_(
+            kClosedLoopStateSize,
+            [this](double t, const Eigen::VectorXd& y, Eigen::VectorXd& f) {
+              closedLoopRhs(sys_, ss_, ds_, t, y, f);
+            },
+            kClosedLoopEvents,
+            [this](double t, const Eigen::VectorXd& y, Eigen::VectorXd& g) {
+              closedLoopEvents(sys_, ss_, ds_, t, y, g);
+            },
             r.tolerances) {}
 
   WalkResult run();
 
  private:
+  const ClosedLoop sys_;
   const GaitMotion<double>& mo_;
-  const Model& c_;
-  const Model& p_;
   const WalkRequest& req_;
   const TouchdownMap& td_;
   CvodeIntegrator cv_;
   bool ss_ = true;
-  double t_end_ds_ = 0.0;
-  LocalPolynomial<double> alpha_ref_;
+  DsReference ds_;
   WalkResult out_;
 
-  PhaseEval evaluate(double t, const Eigen::VectorXd& y) const {
-    const Vec5 q = y.head<5>(), qd = y.segment<5>(5);
-    PhaseEval e;
-    e.gamma_star = ss_ ? ssControl(c_, mo_, req_.bandwidth, q, qd, e.error)
-                       : dsControl(c_, mo_, alpha_ref_, req_.bandwidth, req_.friction_coefficient,
-                                   t, q, qd, e.error);
-    e.friction = frictionTorque(p_, jointSpeeds(qd), SignMode::Smooth);
-    if (ss_) {
-      e.qdd = forwardDynamicsSS(p_, q, qd, e.gamma_star, SignMode::Smooth);
-      e.R2.setZero();
-    } else {
-      dsPlant(p_, q, qd, e.gamma_star - e.friction, e.qdd, e.R2);
-    }
-    const Vec2 acc = pinnedComAcceleration(p_, q, qd, e.qdd);
-    e.R1 = Vec2(p_.total_mass * acc(0), p_.total_mass * (acc(1) + p_.gravity)) - e.R2;
-    return e;
-  }
-
-  void rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& f) const {
-    const PhaseEval e = evaluate(t, y);
-    const Vec4 w = jointSpeeds(Vec5(y.segment<5>(5)));
-    f.resize(kStateSize);
-    f << y.segment<5>(5), e.qdd, w.dot(e.gamma_star), w.dot(e.friction);
-  }
-
-  void roots(double t, const Eigen::VectorXd& y, Eigen::VectorXd& g) const {
-    const PhaseEval e = evaluate(t, y);
-    const Vec5 q = y.head<5>();
-    const ChainState<double> st = chainState(p_, q, Vec5(y.segment<5>(5)));
-    g.resize(kRoots);
-    if (ss_) {
-      g << q(0) - mo_.alpha_fSS, chainPoint(p_.pinned.foot2, st)(1) + kGroundTolerance, e.R1(1),
-          chainPoint(p_.pinned.hip, st)(1) - kFallHipHeight, -y(5);
-    } else {
-      g << t_end_ds_ - t, e.R1(1), e.R2(1), 1.0, 1.0;
-    }
-  }
-
   void record(double t, const Eigen::VectorXd& y, int step) {
-    const PhaseEval e = evaluate(t, y);
+    const ClosedLoopPoint e = evaluateClosedLoop(sys_, ss_, ds_, t, y.head<5>(), y.segment<5>(5));
     out_.samples.push_back({t, step, ss_, y.head<5>(), y.segment<5>(5), e.qdd, e.gamma_star,
-                            e.error, e.R1, e.R2});
+                            e.error, e.R1, e.R2, e.saturated});
     WalkStep& s = out_.steps.back();
     if (ss_) s.max_output_error = std::max(s.max_output_error, e.error.cwiseAbs().maxCoeff());
     s.min_normal_force = std::min({s.min_normal_force, e.R1(1), ss_ ? e.R1(1) : e.R2(1)});
+    if (e.saturated && s.saturated_samples++ == 0) s.first_saturation_time = t;
   }
 
   // Integrates the current phase to its end event, recording samples; returns the event.
@@ -166,17 +69,17 @@ class Walker {
     cv_.reset(t0, y0);
     record(t0, y0, step);
     // Events are falling crossings; a force or fall condition already violated at the phase
-    // start is one too (the swing foot starts on the ground at lift-off: not checked).
+    // start is one too (the swing foot starts on the ground after touchdown: not checked).
     Eigen::VectorXd g;
-    roots(t0, y0, g);
-    for (int i = 0; i < kRoots; ++i)
-      if (g(i) < 0.0 && !(ss_ && i == 1)) return {t0, y0, i};
+    closedLoopEvents(sys_, ss_, ds_, t0, y0, g);
+    for (int i = 0; i < kClosedLoopEvents; ++i)
+      if (g(i) < 0.0 && !(ss_ && (i == kTouchdown || i == kSwingBelowGround))) return {t0, y0, i};
     const double dt = 1.0 / req_.sample_rate;
     double next = (std::floor(t0 / dt) + 1.0) * dt;
     for (;;) {
-      CvodeIntegrator::Result r = cv_.advance(ss_ ? next : std::min(next, t_end_ds_));
+      CvodeIntegrator::Result r = cv_.advance(ss_ ? next : std::min(next, ds_.t_end));
       record(r.t, r.y, step);
-      if (r.root >= 0 || (!ss_ && r.t >= t_end_ds_)) return r;
+      if (r.root >= 0 || (!ss_ && r.t >= ds_.t_end)) return r;
       next += dt;
     }
   }
@@ -187,61 +90,106 @@ class Walker {
     return false;
   }
 
+  std::string at(int k, double t) const {
+    return "step " + std::to_string(k) + " at t = " + std::to_string(t) + " s";
+  }
+
+  void startStep(double t, Eigen::VectorXd& y, int k);
+  void endStep(const Eigen::VectorXd& y);
   bool singleSupport(double& t, Eigen::VectorXd& y, int k);
+  bool touchdown(double t, Eigen::VectorXd& y, int k);
   bool doubleSupport(double& t, Eigen::VectorXd& y, int k);
 };
 
-bool Walker::singleSupport(double& t, Eigen::VectorXd& y, int k) {
-  ss_ = true;
+void Walker::startStep(double t, Eigen::VectorXd& y, int k) {
   WalkStep s;
   s.step = k;
   s.t_start = t;
   s.alphad_start = y(5);
-  s.energy_start = pinnedEnergy(p_, y.head<5>(), y.segment<5>(5));
+  s.energy_start = pinnedEnergy(sys_.plant, y.head<5>(), y.segment<5>(5));
   s.min_normal_force = std::numeric_limits<double>::infinity();
   out_.steps.push_back(s);
   y(10) = y(11) = 0.0;
+}
+
+// The step ends at the next SS start (after lift-off, or at once after an impact that lifts
+// foot 1): its energy there, in the new stance labelling, and the step's work integrals.
+void Walker::endStep(const Eigen::VectorXd& y) {
+  WalkStep& s = out_.steps.back();
+  s.energy_end = pinnedEnergy(sys_.plant, y.head<5>(), y.segment<5>(5));
+  s.step_motor_work = y(10);
+  s.step_friction_loss = y(11);
+}
+
+bool Walker::singleSupport(double& t, Eigen::VectorXd& y, int k) {
+  ss_ = true;
   const CvodeIntegrator::Result r = phase(t, y, k);
   t = r.t;
   y = r.y;
-  WalkStep& st = out_.steps.back();
-  const std::string at = "step " + std::to_string(k) + " at t = " + std::to_string(t) + " s";
-  if (r.root == 1) return fail(WalkOutcome::EarlyTouchdown, "swing foot below the ground, " + at);
-  if (r.root == 2) return fail(WalkOutcome::StanceLiftOff, "stance foot normal force < 0, " + at);
-  if (r.root == 3 || r.root == 4) return fail(WalkOutcome::Fell, "fell back or down, " + at);
+  switch (r.root) {
+    case kSwingBelowGround:
+      return fail(WalkOutcome::EarlyTouchdown, "swing foot below the ground, " + at(k, t));
+    case kStanceNormal:
+      return fail(WalkOutcome::StanceLiftOff, "stance foot normal force < 0, " + at(k, t));
+    case kHipLow:
+    case kAlphaStalls:
+      return fail(WalkOutcome::Fell, "fell back or down, " + at(k, t));
+    case kStanceSlipForward:
+    case kStanceSlipBackward:
+      return fail(WalkOutcome::Slipped, "stance foot left its friction cone, " + at(k, t));
+    default:
+      break;
+  }
   const Vec5 q = y.head<5>(), qd = y.segment<5>(5);
+  WalkStep& st = out_.steps.back();
   st.t_touchdown = t;
-  st.touchdown_event_residual = std::abs(q(0) - mo_.alpha_fSS) / std::abs(qd(0));
-  st.touchdown_foot_speed = (pinnedTerms(p_, q, qd).D2 * qd).norm();
-  st.energy_touchdown = pinnedEnergy(p_, q, qd);
+  const Vec2 foot2_velocity = pinnedTerms(sys_.plant, q, qd).D2 * qd;
+  st.touchdown_event_residual =
+      req_.touchdown_by_foot_height
+          ? std::abs(chainPoint(sys_.plant.pinned.foot2, chainState(sys_.plant, q, qd))(1)) /
+                std::abs(foot2_velocity(1))
+          : std::abs(q(0) - mo_.alpha_fSS) / std::abs(qd(0));
+  st.touchdown_foot_speed = foot2_velocity.norm();
+  st.energy_touchdown = pinnedEnergy(sys_.plant, q, qd);
   st.motor_work = y(10);
   st.friction_loss = y(11);
-  Vec5 qp, qdp;
-  std::string why;
-  if (!td_(p_, q, qd, qp, qdp, why)) return fail(WalkOutcome::ImpactUnavailable, why + ", " + at);
-  y.head<5>() = qp;
-  y.segment<5>(5) = qdp;
+  return touchdown(t, y, k);
+}
+
+bool Walker::touchdown(double t, Eigen::VectorXd& y, int k) {
+  const TouchdownResult td = td_(sys_.plant, y.head<5>(), y.segment<5>(5));
+  if (!td.ok) return fail(td.failure, td.why + ", " + at(k, t));
+  WalkStep& st = out_.steps.back();
+  st.impact_behaviour = td.behaviour;
+  st.impact_energy_loss = td.energy_loss;
+  st.impulse1 = td.impulse1;
+  st.impulse2 = td.impulse2;
+  st.double_support = td.double_support_follows;
+  y.head<5>() = td.q_plus;
+  y.segment<5>(5) = td.qd_plus;
   return true;
 }
 
 bool Walker::doubleSupport(double& t, Eigen::VectorXd& y, int k) {
   ss_ = false;
-  t_end_ds_ = t + mo_.T_DS;
-  // DS control of α: from the touchdown state to the cycle's (α_fDS, α̇_iSS) at lift-off.
-  alpha_ref_ = cubicHermite(t, y(0), y(5), t_end_ds_, mo_.ds_alpha(mo_.T_DS).value,
-                            mo_.alphadot_iSS);
+  ds_ = dsReference(sys_, t, y.head<5>(), y.segment<5>(5));
   const CvodeIntegrator::Result r = phase(t, y, k);
   t = r.t;
   y = r.y;
   out_.steps.back().t_liftoff = t;
-  if (r.root == 1 || r.root == 2)
+  if (r.root == kRearNormal || r.root == kFrontNormal)
     return fail(WalkOutcome::StanceLiftOff,
-                "a foot's normal force < 0 in double support, step " + std::to_string(k));
+                "a foot's normal force < 0 in double support, " + at(k, t));
+  if (r.root < 0 && req_.ds_control == DsAlphaControl::TimeOptimal)
+    return fail(WalkOutcome::Fell, "alpha did not reach alpha_fDS in double support, " + at(k, t));
+  if (r.root >= kRearSlipForward)
+    return fail(WalkOutcome::Slipped,
+                "a foot left its friction cone in double support, " + at(k, t));
   return true;
 }
 
 WalkResult Walker::run() {
-  Eigen::VectorXd y(kStateSize);
+  Eigen::VectorXd y(kClosedLoopStateSize);
   const Vec5 q0 = mo_.q_iSS + req_.dq0;
   Vec5 qs;  // q*(α) = ∂q/∂α on the virtual constraints
   qs(0) = 1.0;
@@ -250,7 +198,14 @@ WalkResult Walker::run() {
   if (req_.use_initial_state) y << req_.q_init, req_.qd_init, 0.0, 0.0;
   double t = 0.0;
   for (int k = 0; k < req_.steps; ++k) {
-    if (!singleSupport(t, y, k) || !doubleSupport(t, y, k)) break;
+    startStep(t, y, k);
+    if (!singleSupport(t, y, k)) break;
+    if (out_.steps.back().double_support) {
+      if (!doubleSupport(t, y, k)) break;
+    } else {
+      out_.steps.back().t_liftoff = t;
+    }
+    endStep(y);
     out_.q_end = y.head<5>();
     out_.qd_end = y.segment<5>(5);
   }
@@ -259,30 +214,18 @@ WalkResult Walker::run() {
 
 }  // namespace
 
-TouchdownMap impulseFreeTouchdown(double speed_tol) {
-  return [speed_tol](const Model& plant, const Vec5& q, const Vec5& qd, Vec5& qp, Vec5& qdp,
-                     std::string& why) {
-    const double speed = (pinnedTerms(plant, q, qd).D2 * qd).norm();
-    if (speed > speed_tol) {
-      why = "touchdown with non-zero velocity " + std::to_string(speed) +
-            " m/s: impact model not available";
-      return false;
-    }
-    qp = exchangeLegs(q);  // (3.22)
-    qdp = exchangeLegVelocities(qd);  // (3.23)
-    return true;
-  };
+void configureForGait(const GaitOptions& o, WalkRequest& r) {
+  r.friction_coefficient = o.friction_coefficient;
+  r.plant_friction_coefficient = o.friction_coefficient;
+  r.full_torque_envelope = o.full_torque_envelope;
+  r.touchdown_by_foot_height = o.parameterisation.landsWithImpact();
 }
 
-const char* outcomeName(WalkOutcome o) {
-  switch (o) {
-    case WalkOutcome::Completed: return "completed";
-    case WalkOutcome::ImpactUnavailable: return "impact_model_unavailable";
-    case WalkOutcome::EarlyTouchdown: return "early_touchdown";
-    case WalkOutcome::StanceLiftOff: return "stance_lift_off";
-    case WalkOutcome::Fell: return "fell";
-  }
-  return "unknown";
+double stepEnergyBalanceError(const WalkStep& s) {
+  const double scale = std::max({std::abs(s.energy_start), std::abs(s.step_motor_work), 1.0});
+  return (s.energy_end - s.energy_start -
+          (s.step_motor_work - s.step_friction_loss - s.impact_energy_loss)) /
+         scale;
 }
 
 WalkResult simulateWalk(const GaitEvaluation<double>& e, const Model& controller,

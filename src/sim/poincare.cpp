@@ -20,20 +20,25 @@ Eigen::MatrixXd finiteDifferenceJacobian(const StepMap& P, const Eigen::VectorXd
   return J;
 }
 
-PoincareLinearisation linearisePoincare(const StepMap& P, const Eigen::VectorXd& x,
-                                        const Eigen::VectorXd& h) {
+PoincareLinearisation analyseJacobian(const Eigen::MatrixXd& J) {
   PoincareLinearisation r;
-  r.fixed_point_residual = (P(x) - x).lpNorm<Eigen::Infinity>();
-  r.jacobian = finiteDifferenceJacobian(P, x, h);
-  const Eigen::EigenSolver<Eigen::MatrixXd> es(r.jacobian);
-  std::vector<Eigen::Index> order(x.size());
+  r.jacobian = J;
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(J);
+  std::vector<Eigen::Index> order(J.rows());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) {
     return std::abs(es.eigenvalues()(a)) > std::abs(es.eigenvalues()(b));
   });
-  r.eigenvalues.resize(x.size());
-  for (Eigen::Index i = 0; i < x.size(); ++i) r.eigenvalues(i) = es.eigenvalues()(order[i]);
+  r.eigenvalues.resize(J.rows());
+  for (Eigen::Index i = 0; i < J.rows(); ++i) r.eigenvalues(i) = es.eigenvalues()(order[i]);
   r.dominant_vector = es.eigenvectors().col(order[0]).normalized();
+  return r;
+}
+
+PoincareLinearisation linearisePoincare(const StepMap& P, const Eigen::VectorXd& x,
+                                        const Eigen::VectorXd& h) {
+  PoincareLinearisation r = analyseJacobian(finiteDifferenceJacobian(P, x, h));
+  r.fixed_point_residual = (P(x) - x).lpNorm<Eigen::Infinity>();
   return r;
 }
 
@@ -61,15 +66,16 @@ Eigen::VectorXd walkingCycleState(const GaitMotion<double>& mo) {
 }
 
 StepMap walkingStepMap(const GaitEvaluation<double>& e, const Model& controller,
-                       const Model& plant, const WalkRequest& base) {
-  return [&e, &controller, &plant, base](const Eigen::VectorXd& x) {
+                       const Model& plant, const WalkRequest& base,
+                       const TouchdownMap& touchdown) {
+  return [&e, &controller, &plant, base, touchdown](const Eigen::VectorXd& x) {
     WalkRequest req = base;
     req.steps = 1;
     req.use_initial_state = true;
     req.q_init = x.head<5>();
     req.qd_init = x.tail<5>();
     req.sample_rate = 1.0;  // no samples needed between events
-    const WalkResult r = simulateWalk(e, controller, plant, req);
+    const WalkResult r = simulateWalk(e, controller, plant, req, touchdown);
     if (r.outcome != WalkOutcome::Completed)
       throw std::runtime_error(std::string("walking step map: ") + outcomeName(r.outcome) + ": " +
                                r.message);

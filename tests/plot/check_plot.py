@@ -21,6 +21,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 STEP_RUN = os.path.join(ROOT, "tests", "data", "sample_run")
 SWEEP_RUN = os.path.join(ROOT, "tests", "data", "sample_sweep")
 EXPORT = os.path.join(ROOT, "tests", "data", "sample_export.csv")  # gaitopt export, 2 steps, 50 Hz
+STABILITY_RUN = os.path.join(ROOT, "tests", "data", "sample_stability")
 EXPECTED_SIZE = (1200, 700)  # FIG_SIZE (12 × 7 in) at 100 dpi
 
 
@@ -91,6 +92,7 @@ def main(binary, kind):
     if kind == "animate":
         return check_animate(binary)
     good, wrong, wrong_name = (SWEEP_RUN, STEP_RUN, "a step run directory") if kind == "sweep" \
+        else (STABILITY_RUN, STEP_RUN, "a step run directory") if kind == "zero_dynamics" \
         else (STEP_RUN, SWEEP_RUN, "a sweep directory")
     with tempfile.TemporaryDirectory(prefix=f"gaitopt_plot_{kind}_") as scratch:
         png = os.path.join(scratch, f"{kind}.png")

@@ -77,6 +77,17 @@ TEST_CASE("gaitopt stability CLI writes the analysis and exits 0 for a stable cy
   const std::string jac = readFile(out + "/jacobian.csv");
   CHECK(std::count(map.begin(), map.end(), '\n') == 4);
   CHECK(std::count(jac.begin(), jac.end(), '\n') == 11);
+  CHECK_THAT(map, Catch::Matchers::StartsWith("alphad_iSS,alphad_iDS,next_alphad_iSS,"
+                                              "next_alphad_iDS,steps_to_cycle,outcome\n"));
+  const std::string json = readFile(out + "/stability.json");
+  CHECK_THAT(json, Catch::Matchers::Contains("\"jacobian_method\": \"sensitivity\""));
+  CHECK_THAT(json, Catch::Matchers::Contains("\"zero_dynamics\""));
+  CHECK_THAT(json, Catch::Matchers::Contains("\"push_forward\""));
+  const CliRun bad = runCli("stability --gait " +
+                            quoted(sourcePath("configs/gait/default_step.yaml")) +
+                            " --jacobian exact --out " + quoted(dir.fresh("bad")));
+  CHECK(bad.exit_code == 2);
+  CHECK_THAT(bad.err, Catch::Matchers::Contains("--jacobian"));
 }
 
 }  // namespace gaitopt::test

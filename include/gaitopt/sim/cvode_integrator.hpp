@@ -13,6 +13,7 @@ namespace gaitopt {
 struct CvodeTolerances {
   double relative = 1e-10;
   double absolute = 1e-12;
+  Eigen::VectorXd absolute_per_component;  // if not empty: replaces `absolute`
 };
 
 class CvodeIntegrator {

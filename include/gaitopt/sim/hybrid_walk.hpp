@@ -1,54 +1,34 @@
 #pragma once
 // Closed-loop walking in gaitopt's own model: single support (stance foot pinned) and double
-// support (both feet fixed), touchdown by the phase variable (α = α_fSS) through a touchdown
-// map, lift-off at the end of the double support, events located by CVODE's root finding.
-//
-// Controller (thesis §4.3.1, α replacing time): in SS the four outputs y = δ − δ_d(α) of the
-// virtual constraints are driven by input–output linearisation on the controller's model to
-// ÿ = −ω² y − 2ω ẏ (critically damped, bandwidth ω); the zero dynamics (α) evolve freely.
-// In DS the three free coordinates (α, δ1, δ2) track α_r(t), a cubic from the touchdown state
-// to the planned end (α_fDS, α̇_iSS) over T_DS (DS control of α, §4.2.1: it restores the
-// cycle's α̇ at lift-off), and δ1,2 = δ_d(α_r(t)); the fourth input R2x is the one of least
-// Γ*ᵀΓ* within both friction cones (the 1-D QP (3.68)–(3.70)). Not done: the projection of
-// the torques on the torque limits.
-#include <functional>
+// support (both feet fixed), touchdown through a touchdown map (impulse-free relabelling, or the
+// rigid impact of sim/impact_touchdown.hpp), lift-off at the end of the double support, events
+// located by CVODE's root finding. The closed loop itself (controller of §4.3.1, plant, event
+// functions) is sim/closed_loop.hpp.
 #include <string>
 #include <vector>
 
 #include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/sim/closed_loop.hpp"
 #include "gaitopt/sim/cvode_integrator.hpp"
 
 namespace gaitopt {
 
-// Maps the state just before touchdown (leg 1 = stance) to the state after it with the legs
-// relabelled (leg 1 = new front leg). Returns false with `why` when it cannot.
-using TouchdownMap = std::function<bool(const Model& plant, const Vec5& q, const Vec5& qd,
-                                        Vec5& q_plus, Vec5& qd_plus, std::string& why)>;
-
-// The touchdown of a gait landing with zero foot velocity: no impulse, only the relabelling
-// (3.22), (3.23). Fails ("impact model not available") when the foot speed exceeds `speed_tol`.
-TouchdownMap impulseFreeTouchdown(double speed_tol = 1e-6);
-
 struct WalkRequest {
   int steps = 10;
-  double bandwidth = 40.0;  // ω [rad/s] of the critically damped output dynamics
-  double sample_rate = 200.0;  // trajectory rows [Hz] (events are always recorded)
-  double friction_coefficient = 0.8;  // of the DS force split's cones (gait option)
+  double bandwidth = 40.0;                   // ω [rad/s] of the critically damped output dynamics
+  double sample_rate = 200.0;                // trajectory rows [Hz] (events are always recorded)
+  double friction_coefficient = 0.8;         // of the controller's cones (gait option)
+  double plant_friction_coefficient = -1.0;  // plant ground μ for slip; < 0: friction_coefficient
+  bool torque_limits = true;                 // project the inputs on the limits (4.57), (4.60)
+  bool full_torque_envelope = true;          // (3.47) with its sloped parts (gait option)
+  bool touchdown_by_foot_height = false;     // impact landings: touchdown at foot-2 height 0
+  DsAlphaControl ds_control = DsAlphaControl::Cubic;
   bool use_initial_state = false;  // start from (q_init, qd_init) instead of the gait's SS start
   Vec5 q_init = Vec5::Zero(), qd_init = Vec5::Zero();
-  Vec5 dq0 = Vec5::Zero();     // perturbation of q at the first SS start
-  double dalphad0 = 0.0;       // perturbation of α̇ there; q̇ = q*(α) α̇ keeps y, ẏ at 0
+  Vec5 dq0 = Vec5::Zero();  // perturbation of q at the first SS start
+  double dalphad0 = 0.0;    // perturbation of α̇ there; q̇ = q*(α) α̇ keeps y, ẏ at 0
   CvodeTolerances tolerances;
 };
-
-enum class WalkOutcome {
-  Completed,          // every step walked
-  ImpactUnavailable,  // touchdown with non-zero foot velocity
-  EarlyTouchdown,     // the swing foot went below the ground before α reached α_fSS
-  StanceLiftOff,      // a supporting foot's normal force became negative
-  Fell,               // α stopped progressing (fell back) or the hip went below 0.3 m
-};
-const char* outcomeName(WalkOutcome o);
 
 struct WalkSample {
   double t;
@@ -56,20 +36,31 @@ struct WalkSample {
   bool single_support;
   Vec5 q, qd, qdd;
   Vec4 gamma_star;
-  Vec4 output_error;  // y (SS) or (α, δ1, δ2) tracking error and 0 (DS)
+  Vec4 output_error;  // y (SS); DS: (α, δ1, δ2) errors (cubic) or (α̇_c − α̇, y1, y2) (time-optimal),
+                      // 0
   Vec2 R1, R2;
+  bool saturated = false;  // the inputs were projected on the limits
 };
 
 struct WalkStep {
   int step;
   double t_start, t_touchdown = 0.0, t_liftoff = 0.0;
-  double alphad_start;            // α̇ at SS start
-  double max_output_error = 0.0;  // max |y| over SS [rad]
+  double alphad_start;                    // α̇ at SS start
+  double max_output_error = 0.0;          // max |y| over SS [rad]
   double touchdown_event_residual = 0.0;  // |α − α_fSS| / |α̇| at the event [s]
   double touchdown_foot_speed = 0.0;
-  double energy_start, energy_touchdown = 0.0;     // pinned mechanical energy [J]
-  double motor_work = 0.0, friction_loss = 0.0;    // over the SS: ∫ωᵀΓ* dt, ∫ωᵀ(Γ* − Γ) dt
-  double min_normal_force = 0.0;                   // over SS and DS, from the samples [N]
+  double energy_start, energy_touchdown = 0.0;  // pinned mechanical energy [J]
+  double motor_work = 0.0, friction_loss = 0.0;  // over the SS: ∫ωᵀΓ* dt, ∫ωᵀ(Γ* − Γ) dt
+  double min_normal_force = 0.0;                 // over SS and DS, from the samples [N]
+  // Impact at touchdown (zero and "none" for an impulse-free touchdown).
+  std::string impact_behaviour = "none";
+  double impact_energy_loss = 0.0;                        // [J]
+  Vec2 impulse1 = Vec2::Zero(), impulse2 = Vec2::Zero();  // [N·s]
+  bool double_support = true;                             // a DS followed the touchdown
+  // Whole step (SS start → next SS start, legs relabelled): ΔE = W − F − impact loss.
+  double energy_end = 0.0, step_motor_work = 0.0, step_friction_loss = 0.0;
+  int saturated_samples = 0;            // samples where the projection acted
+  double first_saturation_time = -1.0;  // [s], −1: none
 };
 
 struct WalkResult {
@@ -79,6 +70,18 @@ struct WalkResult {
   std::vector<WalkSample> samples;
   Vec5 q_end = Vec5::Zero(), qd_end = Vec5::Zero();  // state at the last lift-off reached
 };
+
+// The request's gait-dependent fields from the gait options: the controller's cones and the
+// plant's ground (friction_coefficient), the torque envelope, touchdown by foot height for an
+// impact landing.
+void configureForGait(const GaitOptions& options, WalkRequest& request);
+
+// The closed loop's options of a request (sim/closed_loop.hpp).
+ClosedLoopOptions closedLoopOptions(const WalkRequest& request);
+
+// Energy balance of a whole step, relative: (E_end − E_start − (W − F − impact loss)) /
+// max(|E_start|, |W|, 1 J); round-off only when the plant's contacts do no work.
+double stepEnergyBalanceError(const WalkStep& s);
 
 // `controller` is the model the controller is built on (its friction compensated), `plant` the
 // simulated robot; `evaluation` the gait (motion_computed required).

@@ -23,6 +23,9 @@ struct PoincareLinearisation {
 Eigen::MatrixXd finiteDifferenceJacobian(const StepMap& P, const Eigen::VectorXd& x,
                                          const Eigen::VectorXd& h);
 
+// Eigenvalues (by decreasing modulus) and dominant eigenvector of a map's Jacobian J.
+PoincareLinearisation analyseJacobian(const Eigen::MatrixXd& J);
+
 PoincareLinearisation linearisePoincare(const StepMap& P, const Eigen::VectorXd& x,
                                         const Eigen::VectorXd& h);
 
@@ -37,6 +40,7 @@ Eigen::VectorXd walkingCycleState(const GaitMotion<double>& motion);
 // The closed-loop walking map on x = (q, q̇) ∈ R¹⁰ at SS start; throws std::runtime_error
 // (with the outcome) when the step is not completed.
 StepMap walkingStepMap(const GaitEvaluation<double>& evaluation, const Model& controller,
-                       const Model& plant, const WalkRequest& base);
+                       const Model& plant, const WalkRequest& base,
+                       const TouchdownMap& touchdown = impulseFreeTouchdown());
 
 }  // namespace gaitopt

@@ -1,0 +1,132 @@
+#pragma once
+// The closed-loop walking system as reusable functions of (phase, t, state): the controller of
+// §4.3.1 on the controller's model, the plant, the event functions and the touchdown (reset)
+// maps. sim/hybrid_walk integrates them with CVODE; the Poincaré analysis (sim/poincare) can
+// linearise the same functions.
+//
+// Controller (α replacing time): in SS the four outputs y = δ − δ_d(α) of the virtual
+// constraints are driven by input–output linearisation to ÿ = −ω² y − 2ω ẏ (critically damped,
+// bandwidth ω); the zero dynamics (α) evolve freely. In DS either (α, δ1, δ2) track α_r(t), a
+// cubic to the planned lift-off state, and δ_d(α_r(t)) (DsAlphaControl::Cubic), or α̈ drives α̇
+// to the gait's cyclic curve α̇_c(α) with the outputs δ1,2 − δ_d(α) (TimeOptimal, (4.1)); the
+// fourth input R2x is the one of least Γ*ᵀΓ* within both friction cones (the 1-D QP
+// (3.68)–(3.70)). The inputs are then projected onto the torque envelope and the contact
+// constraints (4.57), (4.60) when they leave them (math/small_qp.hpp).
+#include <functional>
+#include <string>
+
+#include "gaitopt/gait/evaluation.hpp"
+#include "gaitopt/model/model.hpp"
+
+namespace gaitopt {
+
+enum class WalkOutcome {
+  Completed,          // every step walked
+  ImpactUnavailable,  // touchdown the touchdown map cannot resolve (no impact model, or the
+                      // impact is inconsistent or indeterminate)
+  EarlyTouchdown,     // the swing foot went below the ground before α reached α_fSS
+  StanceLiftOff,      // a supporting foot's normal force became negative
+  Fell,               // α stopped progressing (fell back) or the hip went below 0.3 m
+  Slipped,            // a supporting foot left its friction cone (|Rx| > μ Rz), or slid at impact
+  RearFootLift,       // the impact lifted the rear foot of a gait that needs a double support
+};
+const char* outcomeName(WalkOutcome o);
+
+enum class DsAlphaControl {
+  Cubic,        // α_r(t): cubic from the touchdown state to (α_fDS, α̇_iSS) over T_DS
+  TimeOptimal,  // (4.1): to the cyclic curve α̇_c(α) at the largest α̈ the constraints allow
+                // (saturated high gain; the projection gives the bounds); ends at α_fDS
+};
+const char* toString(DsAlphaControl c);  // cubic | time_optimal
+
+struct ClosedLoopOptions {
+  double bandwidth = 40.0;                  // ω [rad/s] of the critically damped outputs
+  double friction_coefficient = 0.8;        // controller's cones (the gait option)
+  double plant_friction_coefficient = 0.8;  // plant ground: slip when |Rx| > μ Rz
+  bool torque_limits = true;                // project the inputs (4.57), (4.60)
+  bool full_torque_envelope = true;         // (3.47) with its sloped parts
+  bool touchdown_by_foot_height = false;    // impact landings: touchdown when foot 2 reaches z = 0
+  DsAlphaControl ds_control = DsAlphaControl::Cubic;
+};
+
+// The constant parts of one simulation.
+struct ClosedLoop {
+  const GaitMotion<double>& motion;
+  const Model& controller;  // the model the controller is built on (its friction compensated)
+  const Model& plant;       // the simulated robot
+  ClosedLoopOptions options;
+};
+
+// The reference of one double support, set at touchdown.
+struct DsReference {
+  LocalPolynomial<double> alpha;  // α_r(t) (cubic control)
+  double t_start = 0.0, t_end = 0.0;
+};
+DsReference dsReference(const ClosedLoop& s, double t, const Vec5& q, const Vec5& qd);
+
+// Everything the dynamics, the events and the samples need at one state.
+struct ClosedLoopPoint {
+  Vec5 qdd = Vec5::Zero();
+  Vec4 gamma_star = Vec4::Zero();  // motor torques (controller output, after projection)
+  Vec4 friction = Vec4::Zero();    // plant joint friction
+  Vec4 error = Vec4::Zero();  // y (SS); DS: (α, δ1, δ2) errors (cubic) or (α̇_c − α̇, y1, y2)
+                              // (time-optimal), 0
+  Vec2 R1 = Vec2::Zero(), R2 = Vec2::Zero();  // plant reactions
+  bool saturated = false;                     // the projection changed the inputs
+  bool projection_infeasible = false;  // contact constraints dropped to keep the torque limits
+};
+ClosedLoopPoint evaluateClosedLoop(const ClosedLoop& s, bool single_support, const DsReference& ds,
+                                   double t, const Vec5& q, const Vec5& qd);
+
+// State y = (q, q̇, ∫ωᵀΓ* dt, ∫ωᵀ(Γ* − Γ) dt): the last two give motor work and friction loss.
+constexpr int kClosedLoopStateSize = 12;
+void closedLoopRhs(const ClosedLoop& s, bool single_support, const DsReference& ds, double t,
+                   const Eigen::VectorXd& y, Eigen::VectorXd& ydot);
+
+// Event functions, an event being a crossing from positive to negative.
+constexpr int kClosedLoopEvents = 7;
+enum SsEvent {
+  kTouchdown,
+  kSwingBelowGround,
+  kStanceNormal,
+  kHipLow,
+  kAlphaStalls,
+  kStanceSlipForward,
+  kStanceSlipBackward
+};
+enum DsEvent {
+  kDsEnd,
+  kRearNormal,
+  kFrontNormal,
+  kRearSlipForward,
+  kRearSlipBackward,
+  kFrontSlipForward,
+  kFrontSlipBackward
+};
+// The touchdown event alone (kTouchdown): α reaches α_fSS (a zero-velocity landing only
+// grazes the ground), or, for an impact landing, the swing foot reaches the ground.
+double touchdownEvent(const ClosedLoop& s, const Vec5& q);
+void closedLoopEvents(const ClosedLoop& s, bool single_support, const DsReference& ds, double t,
+                      const Eigen::VectorXd& y, Eigen::VectorXd& g);
+
+// Touchdown (reset) map: the state just before touchdown (leg 1 = stance) to the state after it
+// with the legs relabelled (leg 1 = new front leg).
+struct TouchdownResult {
+  bool ok = false;
+  Vec5 q_plus = Vec5::Zero(), qd_plus = Vec5::Zero();
+  bool double_support_follows = true;  // false: foot 1 lifted, the new SS starts at once
+  double energy_loss = 0.0;            // kinetic energy dissipated [J]
+  Vec2 impulse1 = Vec2::Zero(), impulse2 = Vec2::Zero();  // [N·s], world frame
+  std::string behaviour = "none";                         // impact behaviour, e.g. "lift/stick"
+  WalkOutcome failure = WalkOutcome::ImpactUnavailable;   // when !ok
+  std::string why;                                        // when !ok
+};
+using TouchdownMap =
+    std::function<TouchdownResult(const Model& plant, const Vec5& q, const Vec5& qd)>;
+
+// The touchdown of a gait landing with zero foot velocity: no impulse, only the relabelling
+// (3.22), (3.23); a DS follows when `double_support` . Fails ("impact model not available")
+// when the foot speed exceeds `speed_tol`.
+TouchdownMap impulseFreeTouchdown(double speed_tol = 1e-6, bool double_support = true);
+
+}  // namespace gaitopt

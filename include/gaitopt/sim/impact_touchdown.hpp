@@ -1,0 +1,33 @@
+#pragma once
+// Touchdown with a rigid impact (thesis ch. 2) for gaitopt simulate: the impact solvers of
+// impact/impact_solver.hpp at the located touchdown, then the leg exchange (3.22)–(3.23).
+//
+// Model: the algebraic impact (2.1)/(2.13) with Coulomb friction by default — the model the
+// impact-landing gaits are optimised with (gait/impact_landing.hpp), so the simulated cycle is
+// the optimised one; the differential (Keller) model is available (--impact differential) and
+// agrees with it on the shipped gaits (one phase, README "Gaits with impact").
+// Outcomes: status inconsistent or indeterminate → ImpactUnavailable (the model cannot say
+// what happens); a foot sliding after the impact → Slipped; foot 1 (rear) lifting when the
+// gait needs a double support → RearFootLift. When foot 1 sticks on a gait without double
+// support, the new SS starts at once with the rear foot at rest on the ground (released).
+#include <string>
+
+#include "gaitopt/gait/options.hpp"
+#include "gaitopt/impact/impact_solver.hpp"
+#include "gaitopt/sim/closed_loop.hpp"
+
+namespace gaitopt {
+
+// `double_support_gait`: a DS follows the touchdown in the gait's cycle. Below `speed_tol`
+// [m/s] of arriving foot speed the touchdown is impulse-free (the impact is 0/0 there).
+TouchdownMap impactTouchdown(ImpactModelKind kind, const ImpactOptions& options,
+                             bool double_support_gait, double speed_tol = 1e-6);
+
+// The touchdown map of a gait: `model` auto (impulse-free for a zero-velocity landing, else
+// algebraic), none (impulse-free only), algebraic or differential; impacts with friction
+// coefficient `ground_mu` (the plant's ground). Throws std::invalid_argument on another name.
+// `model` with auto resolved: none or algebraic.
+std::string resolvedImpactModel(const GaitOptions& options, const std::string& model);
+TouchdownMap gaitTouchdown(const GaitOptions& options, const std::string& model, double ground_mu);
+
+}  // namespace gaitopt
