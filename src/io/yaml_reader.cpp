@@ -92,8 +92,8 @@ class DocumentStarts : public YAML::EventHandler {
 // one document at a time, at most two: yaml-cpp 0.7's LoadAll loops forever on some invalid
 // input (e.g. a line starting with ','; jbeder/yaml-cpp#1040, fixed upstream in #1319), where
 // the parser reports ever more empty documents. A real second document needs a '---' or '...'
-// marker line, which those bogus ones lack; without one the text is not parsed a second time
-// (that second parse was half the time of every load, as the fuzzers showed).
+// marker line, which those bogus ones lack; so without one the text is not parsed a second
+// time (that parse doubled the cost of every load).
 int secondDocumentLine(const std::string& text) {
   const bool marker = text.rfind("---", 0) == 0 || text.rfind("...", 0) == 0 ||
                       text.find("\n---") != std::string::npos ||
