@@ -2,13 +2,13 @@
 
 #include <array>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <sstream>
 
 #include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/json_writer.hpp"
+#include "gaitopt/io/tab_text.hpp"
 
 namespace gaitopt {
 
@@ -156,19 +156,20 @@ void checkSteps(const CsvContext& ctx, const MeasuredData& d, const std::vector<
 
 MeasuredData readMeasuredCsv(const std::string& path) {
   const CsvContext ctx(path);
-  std::ifstream in(path);
-  if (!in) throw ctx.fileError("cannot read the measured-data file");
-  std::string line;
-  if (!std::getline(in, line)) throw ctx.fileError("empty file: expected a header row");
-  const std::map<std::string, int> columns = readHeader(ctx, line);
+  // Size limit, NUL bytes refused and CR dropped as for the other tables (tab_text.hpp).
+  const std::vector<std::string> text = readTableLines(path);
+  if (text.empty()) throw ctx.fileError("empty file: expected a header row");
+  const std::map<std::string, int> columns = readHeader(ctx, text[0]);
   MeasuredData d;
   d.has_torque = optionalGroup(ctx, columns, kTorque);
   d.has_reactions = optionalGroup(ctx, columns, kReactions);
   if (!d.has_torque && !d.has_reactions)
     throw ctx.error(1, "gamma1", "no torque (gamma1..gamma4) and no reaction (R1x..R2z) columns");
   std::vector<int> lines;
-  for (int number = 2; std::getline(in, line); ++number) {
-    if (line.empty() || line == "\r") continue;
+  for (std::size_t i = 1; i < text.size(); ++i) {
+    const std::string& line = text[i];
+    const int number = static_cast<int>(i) + 1;
+    if (line.empty()) continue;
     const std::vector<std::string> cells = splitCsvLine(line);
     if (cells.size() != columns.size())
       throw ctx.error(number, "", "has " + std::to_string(cells.size()) + " cells, header has " +

@@ -93,8 +93,11 @@ TrcData readTrcFile(const std::string& path) {
   trc.rate = h.rate;
   trc.markers = markerNames(lines[3], path, h.markers);
   const std::size_t n_fields = 2 + 3 * trc.markers.size();
-  trc.time.resize(h.frames);
-  trc.positions.resize(h.frames, static_cast<Eigen::Index>(3 * trc.markers.size()));
+  // Sized by the lines there are, not by NumFrames alone: a header claiming 10^12 frames must
+  // end as a truncated file, not as a terabyte allocation (found by fuzz_trc_file).
+  const long capacity = std::min<long>(h.frames, static_cast<long>(lines.size()) - kHeaderLines);
+  trc.time.resize(capacity);
+  trc.positions.resize(capacity, static_cast<Eigen::Index>(3 * trc.markers.size()));
   long frame = 0;
   int last_line = kHeaderLines;
   for (std::size_t i = kHeaderLines; i < lines.size(); ++i) {

@@ -92,16 +92,18 @@ class DocumentStarts : public YAML::EventHandler {
 // one document at a time, at most two: yaml-cpp 0.7's LoadAll loops forever on some invalid
 // input (e.g. a line starting with ','; jbeder/yaml-cpp#1040, fixed upstream in #1319), where
 // the parser reports ever more empty documents. A real second document needs a '---' or '...'
-// marker line, which those bogus ones lack.
+// marker line, which those bogus ones lack; so without one the text is not parsed a second
+// time (that parse doubled the cost of every load).
 int secondDocumentLine(const std::string& text) {
+  const bool marker = text.rfind("---", 0) == 0 || text.rfind("...", 0) == 0 ||
+                      text.find("\n---") != std::string::npos ||
+                      text.find("\n...") != std::string::npos;
+  if (!marker) return 0;
   std::istringstream in(text);
   YAML::Parser parser(in);
   DocumentStarts handler;
   if (!parser.HandleNextDocument(handler) || !parser.HandleNextDocument(handler)) return 0;
-  const bool marker = text.rfind("---", 0) == 0 || text.rfind("...", 0) == 0 ||
-                      text.find("\n---") != std::string::npos ||
-                      text.find("\n...") != std::string::npos;
-  return marker && handler.starts.size() > 1 ? std::max(1, lineOf(handler.starts[1])) : 0;
+  return handler.starts.size() > 1 ? std::max(1, lineOf(handler.starts[1])) : 0;
 }
 
 ConfigError tooLarge(const std::string& file) {

@@ -112,6 +112,10 @@ TEST_CASE("measured data: bad data is reported at its row and column", "[ident][
     }
     requireBad(plain, "no torque");
   }
+  SECTION("binary data") {
+    rows[5] += '\0';
+    requireBad(rows, ":6: binary data (NUL byte)");
+  }
   SECTION("incomplete optional group") {
     for (std::string& r : rows) r = r.substr(0, r.rfind(','));  // drop R2z
     requireBad(rows, "column 'R2z': missing");

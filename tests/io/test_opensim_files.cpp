@@ -116,6 +116,12 @@ TEST_CASE("damaged .trc files are refused naming file, column and line", "[opens
     const std::string p = writeDamaged(dir, lines, {}, ".trc", 100);
     requireConfigError(load, p, "NumFrames", 100, "header says NumFrames=151");
   }
+  SECTION("NumFrames far beyond the file: refused as truncated, nothing allocated for it") {
+    const std::string p =
+        writeDamaged(dir, lines, {{3, replacedOnce(lines[2], "151", "1000000000000")}}, ".trc");
+    REQUIRE_THROWS_WITH(load(p), Contains(p + ":") &&
+                                     Contains("151 frames but its header says NumFrames=1000000000000"));
+  }
   SECTION("wrong first line") {
     const std::string p = writeDamaged(dir, lines, {{1, "Frame\tTime"}}, ".trc");
     REQUIRE_THROWS_WITH(load(p), Contains(p + ":1: ") && Contains("PathFileType"));
