@@ -517,7 +517,8 @@ InertialStage fitInertial(const Context& ctx, const RobotParams& rb, const Fit& 
   const Eigen::VectorXd h = weightedVector(he, ev.held, sigma);
   ir.holdout_rms_before = std::sqrt(hb.squaredNorm() / std::max<Eigen::Index>(1, hb.size()));
   ir.holdout_rms_after = std::sqrt(h.squaredNorm() / std::max<Eigen::Index>(1, h.size()));
-  ir.accepted = ir.p_value < o.significance && ir.holdout_rms_after < ir.holdout_rms_before &&
+  ir.accepted = ir.p_value < o.significance &&
+                ir.holdout_rms_after < (1.0 - o.min_inertial_gain / 100.0) * ir.holdout_rms_before &&
                 bestChannelGain(he, base.r.held, ev.held) >= o.min_channel_gain;
   return st;
 }

@@ -15,6 +15,7 @@
 #include "gaitopt/io/robot_extensions.hpp"
 #include "gaitopt/io/robot_file.hpp"
 #include "gaitopt/model/rocker_foot.hpp"
+#include "test_ident_support.hpp"
 #include "test_opensim_data.hpp"
 #include "test_support.hpp"
 
@@ -80,7 +81,7 @@ TEST_CASE("rocker contact: the contact point of the arc is at rest (rolling, no 
 TEST_CASE("synth rocker_foot: the rolling TRUE model satisfies the ankle-frame equations", "[rocker]") {
   const Effect rocker{EffectKind::RockerFoot, kNoJoint, 0.06};
   const MeasuredData d = synth({rocker}, 7, 4, false);
-  const PreparedData p(d);
+  const PreparedData p(d, test::exactSmoothing());
   const std::vector<char> rows = innerSingleSupport(p);
   const ResidualMatrix with = residuals(p, withEffects(gait().robot, {rocker}), gait().model_options, rows);
   const ResidualMatrix without = residuals(p, gait().robot, gait().model_options, rows);

@@ -7,6 +7,7 @@
 #include "gaitopt/ident/residual_model.hpp"
 #include "gaitopt/ident/synth.hpp"
 #include "gaitopt/io/gait_file.hpp"
+#include "test_ident_support.hpp"
 #include "test_support.hpp"
 
 using namespace gaitopt;
@@ -23,15 +24,6 @@ MeasuredData synth(const std::vector<Effect>& effects, bool noise, int steps = 4
   o.noise = noise;
   o.seed = seed;
   return synthesize(g.robot, g.parameters, g.options, g.model_options, effects, o);
-}
-
-// Noise-free data: the least-biased smoother for every row (degree 8 over ±100 ms), so that
-// what remains is synth's own inconsistency.
-PreprocessOptions exactSmoothing() {
-  PreprocessOptions o;
-  o.order = o.alpha_row_order = 8;
-  o.half_window = o.alpha_row_half_window = 0.1;
-  return o;
 }
 
 double channelRms(const ResidualMatrix& r, int c) {
@@ -51,7 +43,7 @@ TEST_CASE("synth without noise: residuals of the TRUE model vanish", "[ident]") 
   for (const auto& effects : std::vector<std::vector<Effect>>{
            {}, {{EffectKind::Slope, kNoJoint, 0.03}}, {{EffectKind::Payload, kNoJoint, 5.0}}}) {
     const MeasuredData d = synth(effects, false);
-    const PreparedData p(d, exactSmoothing());
+    const PreparedData p(d, test::exactSmoothing());
     const GaitFile g = defaultGait();
     // Single support away from the phase ends (the smoothing differentiator is one-sided
     // there), double support whole (only its closure residual is checked).
@@ -77,7 +69,7 @@ TEST_CASE("synth without noise: residuals of the TRUE model vanish", "[ident]") 
 TEST_CASE("synth: hidden effects change the data the nominal model predicts", "[ident]") {
   const GaitFile g = defaultGait();
   const MeasuredData d = synth({{EffectKind::TorqueOffset, 3, 2.0}}, false);
-  const PreparedData p(d, exactSmoothing());
+  const PreparedData p(d, test::exactSmoothing());
   const ResidualMatrix r = residuals(p, g.robot, g.model_options, std::vector<char>(d.size(), 1));
   // Mean single-support residual per knee: the offset on knee_right only.
   const auto ssMean = [&](int c) {

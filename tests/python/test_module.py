@@ -173,7 +173,9 @@ def test_diagnose(binary, scratch):
         with open(os.path.join(cli_out, name)) as f, open(os.path.join(py_out, name)) as g:
             text = f.read()
             check(texts[key] == text and g.read() == text, f"diagnose(): {key} == CLI {name}, file too")
-    check("a torque-sensor offset of -3" in texts["report"], "diagnose(): the offset found")
+    causes = [(c["effect"], c["joint"], c["value"]) for c in result["cause"]]
+    check(len(causes) == 1 and causes[0][:2] == ("torque_offset", "knee_left")
+          and abs(causes[0][2] + 3.0) < 0.1, f"diagnose(): the offset found {causes}")
     try:
         gaitopt.diagnose(ROBOT, data, holdout=1)
         check(False, "diagnose(holdout=1) raised nothing")

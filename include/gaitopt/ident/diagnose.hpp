@@ -47,6 +47,10 @@ struct DiagnoseOptions {
   // Practical significance: a cause must also cut the held-out RMS of some channel by this
   // much [%] (a statistically significant but tiny effect may be a bias of the smoothing).
   double min_channel_gain = 10.0;
+  // The last-resort `inertial` stage (7+ base parameters) must also cut the held-out weighted
+  // RMS over all channels by this much [%]: a few-% gain is what such a flexible fit gets from
+  // the smoothing bias of a large named effect (a 4 cm foot offset gave 1.7 %).
+  double min_inertial_gain = 5.0;
   int max_causes = 3;
   double edge_trim = 0.03;         // [s]
   PreprocessOptions preprocess;
