@@ -1,7 +1,7 @@
 // bench_optimize: wall-clock cost of whole optimisations on the shipped configurations.
 //
 //   bench_optimize [--json FILE] [--runs N] [--sweep-runs N] [--fd-runs N] [--no-ipopt]
-//                  [--no-configs] [--help]
+//                  [--no-configs] [--random-starts N] [--help]
 //
 // Measurements (configs/default.yaml, read with loadOptimizeConfig; the evaluator is built from
 // the configuration exactly as `gaitopt optimize` builds it):
@@ -21,6 +21,11 @@
 //       chevallereau_aoustin_0.75.yaml (the library call; optimiser configuration files have no
 //       gradient key): status, iterations, function and gradient evaluations, wall time
 //       (median of `fd-runs` for the two extra configurations), final criterion.
+//   (g) only with --random-starts N (the protocol: N = 50): on each of the three shipped
+//       configurations, N random starts (randomStart, std::mt19937_64 seeded 1, as
+//       `gaitopt optimize --random-starts N --seed 1`): converged (optimal) runs, clusters of
+//       their criteria (sorted; a new cluster starts 0.1 % above the first value of the last),
+//       the largest cluster, the best criterion and the median wall time per start.
 // Targets printed next to the figures: optimisation (a) median ≤ 0.2 s, 9-speed sweep (b)
 // median ≤ 3 s. Exit status: 0, or 1 when a repeated measurement was not deterministic (or the
 // JSON file cannot be written), 2 for bad arguments or unreadable configurations.
@@ -39,6 +44,7 @@
 #include "gaitopt/opt/optimizer.hpp"
 #include "gaitopt/io/json_writer.hpp"
 #include "gaitopt/io/optimize_config.hpp"
+#include "gaitopt/opt/random_start.hpp"
 #include "gaitopt/opt/sweep.hpp"
 
 namespace {
@@ -131,15 +137,58 @@ struct SweepRun {
   std::vector<int> attempts;
 };
 
+// Random-start protocol on one configuration, (g).
+struct StartsCase {
+  std::string name;
+  int starts = 0, converged = 0, clusters = 0, largest_cluster = 0;
+  std::optional<double> best;
+  SampleStats time;
+};
+
+StartsCase randomStarts(const std::string& name, int n) {
+  const OptimizeConfig c = loadOptimizeConfig(std::string(kConfigDir) + name);
+  const GaitEvaluator ev(c.robot, c.options, c.model_options);
+  const GaitParameters centre = configuredInitialGuess(c, ev.model());
+  std::mt19937_64 rng(1);
+  StartsCase sc;
+  sc.name = name;
+  sc.starts = n;
+  std::vector<double> values, times;
+  for (int k = 0; k < n; ++k) {
+    OptimizationRequest req =
+        optimizationRequest(c, randomStart(centre, rng, c.options.parameterisation));
+    req.solver.print_every = 0;
+    const Run r = runOnce(ev, req, c.criterion);
+    times.push_back(r.wall_s);
+    if (r.status == "optimal" && r.criterion) values.push_back(*r.criterion);
+  }
+  std::sort(values.begin(), values.end());
+  sc.converged = static_cast<int>(values.size());
+  double first = 0.0;
+  int size = 0;
+  for (double v : values) {
+    if (size == 0 || v > first * 1.001) {
+      ++sc.clusters;
+      first = v;
+      size = 0;
+    }
+    sc.largest_cluster = std::max(sc.largest_cluster, ++size);
+  }
+  if (!values.empty()) sc.best = values.front();
+  sc.time = sampleStats(times);
+  return sc;
+}
+
 void usage(std::ostream& out) {
   out << "usage: bench_optimize [--json FILE] [--runs N] [--sweep-runs N] [--fd-runs N]\n"
-         "                      [--no-ipopt] [--no-configs]\n"
+         "                      [--no-ipopt] [--no-configs] [--random-starts N]\n"
          "  --json FILE     also write every figure as JSON to FILE\n"
          "  --runs N        timed SLSQP optimisations of configs/default.yaml (default 7, >= 7)\n"
          "  --sweep-runs N  timed 9-speed sweeps (default 3)\n"
          "  --fd-runs N     finite-difference runs (and exact runs of the extra configs; default 3)\n"
          "  --no-ipopt      skip the Ipopt run (d)\n"
-         "  --no-configs    skip the chesse / chevallereau_aoustin gradient comparison\n";
+         "  --no-configs    skip the chesse / chevallereau_aoustin gradient comparison\n"
+         "  --random-starts N  also run N random starts on each shipped configuration (g)\n";
 }
 
 void writeRun(JsonWriter& w, const Run& r) {
@@ -192,7 +241,7 @@ void printSeriesRuns(const char* label, const Series& s) {
 
 int main(int argc, char** argv) {
   std::string json_path;
-  int runs = 7, sweep_runs = 3, fd_runs = 3;
+  int runs = 7, sweep_runs = 3, fd_runs = 3, random_starts = 0;
   bool with_ipopt = true, with_configs = true;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -207,6 +256,9 @@ int main(int argc, char** argv) {
     } else if (arg == "--sweep-runs" && has_value && parsePositive(argv[i + 1], sweep_runs)) {
       ++i;
     } else if (arg == "--fd-runs" && has_value && parsePositive(argv[i + 1], fd_runs)) {
+      ++i;
+    } else if (arg == "--random-starts" && has_value &&
+               parsePositive(argv[i + 1], random_starts)) {
       ++i;
     } else if (arg == "--no-ipopt") {
       with_ipopt = false;
@@ -378,6 +430,27 @@ int main(int argc, char** argv) {
                 gc.fd.time.median / gc.exact.time.median);
   }
 
+  // (g) the random-start protocol.
+  std::vector<StartsCase> starts_cases;
+  if (random_starts > 0) {
+    std::printf("\n(g) %d random starts (seed 1) per configuration\n", random_starts);
+    std::printf("  %-32s %10s %9s %8s %14s %18s\n", "config", "converged", "clusters",
+                "largest", "best", "median s/start");
+    for (const char* name :
+         {"default.yaml", "chesse_0.85.yaml", "chevallereau_aoustin_0.75.yaml"}) {
+      try {
+        starts_cases.push_back(randomStarts(name, random_starts));
+      } catch (const std::exception& e) {
+        std::cerr << "bench_optimize: error: " << e.what() << "\n";
+        return 2;
+      }
+      const StartsCase& sc = starts_cases.back();
+      std::printf("  %-32s %6d/%-3d %9d %8d %14s %18.3f\n", name, sc.converged, sc.starts,
+                  sc.clusters, sc.largest_cluster, criterionText(sc.best).c_str(),
+                  sc.time.median);
+    }
+  }
+
   const double total_s = secondsSince(start);
   std::printf("\ntotal benchmark time %.1f s; %s\n(sink %g)\n", total_s,
               deterministic ? "every repeated measurement deterministic"
@@ -454,6 +527,24 @@ int main(int argc, char** argv) {
       w.key("finite_difference");
       writeSeries(w, gc.fd);
       w.key("ratio_fd_to_exact").value(gc.fd.time.median / gc.exact.time.median);
+      w.endObject();
+    }
+    w.endArray();
+    w.key("random_starts").beginArray();
+    for (const StartsCase& sc : starts_cases) {
+      w.beginObject();
+      w.key("config").value(sc.name);
+      w.key("starts").value(sc.starts);
+      w.key("converged").value(sc.converged);
+      w.key("clusters").value(sc.clusters);
+      w.key("largest_cluster").value(sc.largest_cluster);
+      w.key("best");
+      if (sc.best) {
+        w.value(*sc.best);
+      } else {
+        w.null();
+      }
+      w.key("median_time_per_start_s").value(sc.time.median);
       w.endObject();
     }
     w.endArray();

@@ -33,10 +33,11 @@ struct GradientCheck {
 // parameter the evaluation reads (Parameterisation::isUsed). An entry whose forward and
 // backward one-sided differences disagree by more than 1e-3 (relative to max(1, |FD|)) has a
 // branch switch (max/clamp/abs) within ±h: its FD is unreliable, it is skipped and counted.
-// The others must satisfy |AD − FD| ≤ 1e-5·max(1, |FD|).
+// The others must satisfy |AD − FD| ≤ tolerance·max(1, |FD|).
 inline GradientCheck checkGradient(const GaitEvaluator& ev, const GaitParameters& p,
                                    const std::vector<GradientOutput>& outputs,
-                                   const std::function<std::string(const std::string&)>& group_of) {
+                                   const std::function<std::string(const std::string&)>& group_of,
+                                   double tolerance = 1e-5) {
   GradientCheck r;
   const Parameterisation& par = ev.options().parameterisation;
   const std::vector<std::string> names = par.names();
@@ -72,7 +73,7 @@ inline GradientCheck checkGradient(const GaitEvaluator& ev, const GaitParameters
         r.worst = err;
         r.worst_what = o.name + " / " + names[i];
       }
-      if (err > 1e-5 && ++r.failed <= 20) {
+      if (err > tolerance && ++r.failed <= 20) {
         std::ostringstream s;
         s.precision(10);
         s << o.name << " / " << names[i] << ": AD " << o.exact(i) << ", FD " << fd << " (fwd "

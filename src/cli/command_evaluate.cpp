@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "gaitopt/io/atomic_file.hpp"
 #include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/gait/feasibility.hpp"
 #include "gaitopt/gait/summary.hpp"
 #include "gaitopt/gait/trajectory.hpp"
 #include "gaitopt/io/gait_file.hpp"
@@ -60,8 +61,9 @@ void registerEvaluateCommand(CLI::App& app, int& exit_code) {
     staged.commit();
 
     const bool criteria = defined && e.motion_computed;
+    const int failed = feasibilityVerdict(evaluator, gait.parameters, e).failed_level;
     std::cout << "evaluate: " << (defined ? "ok" : "undefined") << ", failed level "
-              << (e.failed_level < 0 ? std::string("none") : std::to_string(e.failed_level))
+              << (failed < 0 ? std::string("none") : std::to_string(failed))
               << ", C_Gamma " << (criteria ? shortNumber(e.C_Gamma) + " N^2 m s" : "n/a")
               << ", speed "
               << (zeroDynamicsComputed(evaluator, e) ? shortNumber(e.speed, "%.4g") + " m/s"

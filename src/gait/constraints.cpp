@@ -1,16 +1,41 @@
 #include "gaitopt/gait/constraints.hpp"
 
+#include <cmath>
+
 #include "gaitopt/gait/impact_landing.hpp"
+#include "gaitopt/model/model.hpp"
 
 namespace gaitopt {
+namespace {
 
-ConstraintLayout::ConstraintLayout(const GaitOptions& o) {
-  const int ss = o.ss_nodes + 1;
+// Typical magnitude of each constraint group's values (so the solvers see O(1) rows and one
+// scaled tolerance fits every unit).
+double groupScale(int group, const Model& m) {
+  const double reach = std::pow(m.robot.l4 + m.robot.l5, 2);
+  const double weight = m.total_mass * m.gravity;
+  switch (group) {
+    case kReachMaxIDS: case kReachMinIDS: case kReachMaxFDS: case kReachMinFDS:
+    case kReachMaxInt: case kReachMinInt: case kDsReachMax: case kDsReachMin:
+      return reach;
+    case kFPositive: return 10.0;
+    case kTorqueSS: case kTorqueDS: return m.robot.envelope.torque[0];
+    case kFrictionConeSS: case kFrictionConeDS: case kNormalForceSS: case kNormalForceDS:
+      return weight;
+    case kClearance: return 0.05;
+    default: return 1.0;  // angles [rad], angular rates [rad/s], κ
+  }
+}
+
+}  // namespace
+
+ConstraintLayout::ConstraintLayout(const GaitOptions& o, const Model& model) {
+  const int ss = o.ss_nodes + 1 + static_cast<int>(o.ss_extra_points.size());
   const Parameterisation& par = o.parameterisation;
   const bool impact = par.landsWithImpact(), single = !par.hasDoubleSupport();
   // Without DS the SS starts at the impact configuration: no DS groups, and the (α_fDS, …)
   // configuration, equal to (α_iDS, …), is not checked twice.
-  const int ds = single ? 0 : o.ds_nodes + 1, dsb = single ? 0 : 1;
+  const int ds = single ? 0 : o.ds_nodes + 1 + static_cast<int>(o.ds_extra_points.size());
+  const int dsb = single ? 0 : 1;
   const int slacks = impact ? landingImpactSlackCount(par.landing) : 0;
   struct Spec {
     const char* name;
@@ -50,10 +75,20 @@ ConstraintLayout::ConstraintLayout(const GaitOptions& o) {
       {"impact_rate_ratio", 1, "(3.23)", impact ? 1 : 0},
       {"impact_orbit", 3, "(3.14)", single ? 1 : 0},
   };
-  for (const Spec& s : specs) {
-    groups_.push_back({s.name, s.level, s.equation, size_, s.count});
+  for (int id = 0; id < kNumConstraintGroups; ++id) {
+    const Spec& s = specs[id];
+    const bool in_ss = id == kFPositive || id == kNoFallBack || (id >= kTorqueSS && id <= kClearance);
+    const bool in_ds =
+        id == kDsReachMax || id == kDsReachMin || (id >= kTorqueDS && id <= kDsMonotone);
+    const ConstraintPhase phase = in_ss   ? ConstraintPhase::SingleSupport
+                                  : in_ds ? ConstraintPhase::DoubleSupport
+                                          : ConstraintPhase::None;
+    const int points = in_ss ? ss - (id == kClearance ? 2 : 0) : in_ds ? ds : 1;
+    groups_.push_back({s.name, s.level, s.equation, size_, s.count, groupScale(id, model), phase,
+                       points > 0 ? s.count / points : 0, id == kClearance ? 1 : 0});
     size_ += s.count;
     entry_level_.insert(entry_level_.end(), s.count, s.level);
+    entry_group_.insert(entry_group_.end(), s.count, id);
   }
 }
 

@@ -29,7 +29,7 @@ GaitEvaluator::GaitEvaluator(const RobotParams& robot, const GaitOptions& option
                              const ModelOptions& model_options)
     : model_(gaitModel(robot, options, model_options)),
       options_(options),
-      layout_(options),
+      layout_(options, model_),
       grids_(options) {
   if (options.parameterisation.ss_points < 1 || options.parameterisation.ss_points % 2 == 0 ||
       options.parameterisation.ds_points < 0 ||

@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include "gaitopt/gait/feasibility.hpp"
 #include "gaitopt/gait/impact_landing.hpp"
 
 namespace gaitopt {
@@ -94,6 +95,25 @@ void writeImpactSummary(JsonWriter& w, const GaitEvaluator& ev, const GaitEvalua
   w.endObject();
 }
 
+// The phase-wise constraints on the 10× refined grid (null when the motion is not computed).
+void writeBetweenNodes(JsonWriter& w, const GaitEvaluator& ev, const BetweenNodesCheck& b,
+                       bool motion_computed) {
+  w.key("between_nodes");
+  if (!motion_computed || !b.computed || b.worst_group < 0) {
+    w.null();
+    return;
+  }
+  const ConstraintGroup& g = ev.layout()[b.worst_group];
+  w.beginObject();
+  w.key("ss_nodes").value(b.ss_nodes);
+  w.key("ds_nodes").value(b.ds_nodes);
+  w.key("worst_group").value(g.name);
+  w.key("worst_value").value(b.worst_value);
+  w.key("worst_scaled").value(b.worst_scaled);
+  w.key("satisfied").value(b.worst_scaled <= kFeasibilityTolerance);
+  w.endObject();
+}
+
 }  // namespace
 
 ConstraintGroupSummary summarizeConstraintGroup(const ConstraintGroup& group,
@@ -107,7 +127,7 @@ ConstraintGroupSummary summarizeConstraintGroup(const ConstraintGroup& group,
     ++s.defined;
     nan = nan || std::isnan(g);
     if (g > worst) worst = g;
-    if (g > 0.0) ++s.violated;
+    if (g > kFeasibilityTolerance * group.scale) ++s.violated;
   }
   s.value = s.defined > 0 && !nan ? worst : std::numeric_limits<double>::quiet_NaN();
   return s;
@@ -133,13 +153,19 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
   const bool timing = zeroDynamicsComputed(ev, e);
   const GaitOptions& o = ev.options();
 
+  const FeasibilityVerdict verdict = feasibilityVerdict(ev, p, e);
   w.key("status").value(defined ? "ok" : "undefined");
+  w.key("feasible").value(verdict.feasible);
+  w.key("feasibility_tolerance").value(kFeasibilityTolerance);
   w.key("failed_level");
-  if (e.failed_level < 0) {
+  if (verdict.failed_level < 0) {
     w.null();
   } else {
-    w.value(e.failed_level);
+    w.value(verdict.failed_level);
   }
+  w.key("unmet_constraints").beginArray();
+  for (const std::string& name : verdict.unmet_groups) w.value(name);
+  w.endArray();
   w.key("motion_computed").value(e.motion_computed);
   w.key("numerically_undefined").value(e.numerically_undefined);
   w.key("robot").value(ev.model().robot.name);
@@ -188,9 +214,10 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
     w.key("unit").value(squared ? "(rad/s)^2" : groupUnit(id));
     w.key("value");
     numberOrNull(w, has_value, s.value);
+    w.key("scale").value(g.scale);
     w.key("satisfied");
     if (has_value) {
-      w.value(s.value <= 0.0);
+      w.value(s.value <= kFeasibilityTolerance * g.scale);
     } else {
       w.null();
     }
@@ -201,6 +228,7 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
   }
   w.endArray();
   w.key("max_violation").value(maxDefinedViolation(e));
+  writeBetweenNodes(w, ev, verdict.between_nodes, e.motion_computed);
 
   w.key("ds_switch_times").beginArray();
   if (criteria) {
@@ -243,7 +271,8 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
       {"T_SS", "s"}, {"T_DS", "s"}, {"alphadot_fSS", "rad/s"},
       {"ds_switch_times", "s from the start of double support"},
       {"parameters", "rad, m, s; delta*s_* are d(delta)/d(alpha), alphadot_iSS rad/s"},
-      {"constraints", "per group, see 'unit'; satisfied when value <= 0"},
+      {"constraints", "per group, see 'unit'; satisfied when value <= feasibility_tolerance * scale"},
+      {"between_nodes", "worst_value in the unit of worst_group; worst_scaled = value / scale"},
   };
   w.key("units").beginObject();
   for (const auto& [key, unit] : kUnits) w.key(key).value(unit);

@@ -63,7 +63,7 @@ class HierarchyConstraints : public ConstraintSet {
                        double interior, double level5_interior)
       : cache_(cache), rows_(entries), interior_(interior), level5_interior_(level5_interior) {
     const ConstraintLayout& layout = cache.evaluator().layout();
-    for (int e : rows_) scales_.push_back(constraintScale(layout, cache.evaluator().model(), e));
+    for (int e : rows_) scales_.push_back(layout.scaleOf(e));
   }
   std::string name() const override { return "hierarchy"; }
   int size() const override { return static_cast<int>(rows_.size()); }
@@ -137,23 +137,6 @@ double criterionValue(const GaitEvaluation<double>& e, Criterion c) {
   return c == Criterion::Torque ? e.C_Gamma : c == Criterion::Energy ? e.C_E : e.W;
 }
 
-// Typical magnitude of each constraint group's values (so Ipopt sees O(1) rows).
-double constraintGroupScale(int group, const Model& m) {
-  const double reach = std::pow(m.robot.l4 + m.robot.l5, 2);
-  const double weight = m.total_mass * m.gravity;
-  switch (group) {
-    case kReachMaxIDS: case kReachMinIDS: case kReachMaxFDS: case kReachMinFDS:
-    case kReachMaxInt: case kReachMinInt: case kDsReachMax: case kDsReachMin:
-      return reach;
-    case kFPositive: return 10.0;
-    case kTorqueSS: case kTorqueDS: return m.robot.envelope.torque[0];
-    case kFrictionConeSS: case kFrictionConeDS: case kNormalForceSS: case kNormalForceDS:
-      return weight;
-    case kClearance: return 0.05;
-    default: return 1.0;  // angles [rad], angular rates [rad/s], κ
-  }
-}
-
 const char* criterionName(Criterion c) {
   return c == Criterion::Torque ? "C_Gamma" : c == Criterion::Energy ? "C_E" : "W";
 }
@@ -194,12 +177,6 @@ std::unique_ptr<CostTerm> makeCriterionCost(GaitEvaluationCache& cache, Criterio
 std::unique_ptr<CostTerm> makeDistanceCost(const GaitParameters& reference,
                                            const Parameterisation& par) {
   return std::make_unique<DistanceCost>(reference, par);
-}
-
-double constraintScale(const ConstraintLayout& layout, const Model& m, int entry) {
-  for (int g = 0; g < kNumConstraintGroups; ++g)
-    if (entry < layout[g].offset + layout[g].count) return constraintGroupScale(g, m);
-  return 1.0;
 }
 
 std::vector<int> hierarchyEntries(const ConstraintLayout& layout, int max_level) {

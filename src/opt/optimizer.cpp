@@ -1,15 +1,16 @@
 #include "gaitopt/opt/optimizer.hpp"
 
 #include <algorithm>
+#include <Eigen/Cholesky>
 #include <chrono>
 #include <cmath>
+#include <limits>
+
+#include "gaitopt/gait/feasibility.hpp"
 
 namespace gaitopt {
 namespace {
 
-// A scaled constraint value g/scale at or below this counts as met (ten times the solver's own
-// feasibility tolerance, to absorb the last iterate's slack); also applies to |speed − v|.
-constexpr double kFeasibilityTol = 1e-6;
 // Exchange method for the semi-infinite constraints: a grid entry joins the NLP once its
 // scaled value exceeds −kScreenThreshold; the full grid is re-checked after each solve.
 constexpr double kScreenThreshold = 0.3;
@@ -17,9 +18,21 @@ constexpr int kMaxExchangeRounds = 8;
 // Projections aim this far inside the lower levels (scaled units): a point on their boundary
 // (e.g. a DS with the minimum α range) is a poor start for the next stage.
 constexpr double kProjectionInterior = 0.05;
-// Full stage: strictly inside levels 0–4; the final polish also inside level 5, so that the
-// optimum satisfies the evaluator's strict g ≤ 0 everywhere.
+// Full stage: strictly inside levels 0–4, whose failure would stop the motion's computation;
+// level 5 only to the solver's own tolerance, below the shared feasibility tolerance.
 constexpr double kInterior = 1e-6;
+// Exchange method on continuous α and t: when a local maximum of the phase-wise constraints on
+// the 10× refined grid exceeds kBetweenNodesThreshold (scaled), every local maximum within
+// kNearActive of active becomes an extra constraint point, then the problem is re-solved. The
+// near-active ones too: the optimum moves when the violated ones are added, and a maximum just
+// inside would then be violated, costing one more solve (measured: 4 solves instead of 2).
+constexpr double kBetweenNodesThreshold = 0.25 * kFeasibilityTolerance;
+constexpr double kNearActive = 1e-3;
+constexpr int kMaxBetweenNodesRounds = 4;
+constexpr double kMinPointSpacing = 1e-4;  // in the Chebyshev coordinate of the phase
+// Restoration after new points: Gauss–Newton steps on the rows within this (scaled) band.
+constexpr int kRestorationSteps = 8;
+constexpr double kRestorationBand = 1e-6;
 
 NlpSolution solve(NlpProblem& problem, const SolverSettings& s, const std::string& label,
                   std::ostream* log) {
@@ -38,18 +51,7 @@ NlpSolution solve(NlpProblem& problem, const SolverSettings& s, const std::strin
 }
 
 double scaledValue(const GaitEvaluator& ev, const GaitEvaluation<double>& e, int k) {
-  return e.g[k] / constraintScale(ev.layout(), ev.model(), k);
-}
-
-// Lowest level ≤ max_level with a violated (computed) entry, −1 if none.
-int lowestViolatedLevel(const GaitEvaluator& ev, const GaitEvaluation<double>& e, int max_level) {
-  const ConstraintLayout& layout = ev.layout();
-  int lowest = -1;
-  for (int k = 0; k < layout.size(); ++k)
-    if (e.state[k] != ConstraintState::NotComputed && layout.levelOf(k) <= max_level &&
-        scaledValue(ev, e, k) > kFeasibilityTol && (lowest < 0 || layout.levelOf(k) < lowest))
-      lowest = layout.levelOf(k);
-  return lowest;
+  return e.g[k] / ev.layout().scaleOf(k);
 }
 
 // Adds to `entries` the grid entries of levels ≤ max_level that are violated, close to active,
@@ -110,55 +112,24 @@ GaitParameters project(GaitEvaluationCache& cache, const GaitParameters& start, 
       .x;
 }
 
-bool meetsAll(const GaitEvaluator& ev, const OptimizationRequest& req,
-              const GaitEvaluation<double>& e) {
-  return e.motion_computed && lowestViolatedLevel(ev, e, 5) < 0 &&
-         (!req.speed || std::abs(e.speed - *req.speed) <= kFeasibilityTol);
+// Every node entry and the speed within the feasibility tolerance (the between-node check is
+// the outer exchange loop's business).
+bool meetsAll(const OptimizationRequest& req, const GaitEvaluation<double>& e) {
+  return e.motion_computed && e.failed_level < 0 &&
+         (!req.speed || std::abs(e.speed - *req.speed) <= kFeasibilityTolerance);
 }
 
-// From an optimum, the same problem with every bound kInterior inside: a small continuation
-// step (it cannot jump to another local optimum) after which the evaluator's strict g ≤ 0
-// holds. Kept only if it converged, stays feasible and costs at most 1e-6 more.
-GaitParameters polish(GaitEvaluationCache& cache, const GaitParameters& p,
-                      const OptimizationRequest& req, double scale, std::ostream* log,
-                      OptimizationResult& r) {
-  const GaitEvaluator& ev = cache.evaluator();
-  const double before = criterionValue(cache.values(p), req.criterion);
-  const NlpSolution sol = solveStage(cache, p, 5, kInterior, kInterior, req.solver, "polish", log,
-                                     r, [&](NlpProblem& problem) {
-                                       problem.addCost(makeCriterionCost(cache, req.criterion, scale));
-                                       if (req.speed)
-                                         problem.addConstraints(makeSpeedConstraint(cache, *req.speed));
-                                     });
-  const GaitEvaluation<double>& e = cache.values(sol.x);
-  const bool better = sol.status == NlpStatus::Solved && meetsAll(ev, req, e) &&
-                      criterionValue(e, req.criterion) <= before * (1.0 + 1e-6);
-  return better ? GaitParameters(sol.x) : p;
-}
-
+// The final verdict is the shared one (gait/feasibility.hpp): an unmet constraint, also between
+// nodes, is "infeasible" whatever the solver says; a feasible point is "optimal" only if the
+// solver also converged.
 void classify(const GaitEvaluator& ev, const OptimizationRequest& req, NlpStatus solver_status,
               OptimizationResult& r) {
-  const GaitEvaluation<double>& e = r.evaluation;
-  const ConstraintLayout& layout = ev.layout();
-  r.constraint_violation = 0.0;
-  for (int k = 0; k < layout.size(); ++k)
-    if (e.state[k] != ConstraintState::NotComputed) r.constraint_violation = std::max(r.constraint_violation, e.g[k]);
-  const bool speed_unmet = req.speed && std::abs(e.speed - *req.speed) > kFeasibilityTol;
-  if (req.speed) r.constraint_violation = std::max(r.constraint_violation, std::abs(e.speed - *req.speed));
-  r.unmet_level = lowestViolatedLevel(ev, e, 5);
-  if (speed_unmet && r.unmet_level < 0) r.unmet_level = 5;
-  for (const ConstraintGroup& g : layout.groups())
-    for (int k = 0; k < g.count; ++k)
-      if (g.level == r.unmet_level && e.state[g.offset + k] != ConstraintState::NotComputed &&
-          scaledValue(ev, e, g.offset + k) > kFeasibilityTol) {
-        r.unmet_constraints.push_back(g.name);
-        break;
-      }
-  if (speed_unmet && r.unmet_level == 5) r.unmet_constraints.push_back("speed");
-  // The final point decides first: an unmet constraint is "infeasible" whatever the solver
-  // says; a feasible point is "optimal" only if the solver also converged.
-  const bool feasible = r.unmet_level < 0 && e.motion_computed;
-  if (!feasible) r.status = "infeasible";
+  const FeasibilityVerdict v = feasibilityVerdict(ev, r.parameters, r.evaluation, req.speed);
+  r.constraint_violation = v.max_violation;
+  r.unmet_level = v.failed_level;
+  r.unmet_constraints = v.unmet_groups;
+  r.between_nodes_worst_scaled = v.between_nodes.worst_scaled;
+  if (!v.feasible) r.status = "infeasible";
   else if (solver_status == NlpStatus::Solved) r.status = "optimal";
   else if (solver_status == NlpStatus::MaxIterations) r.status = "max_iter";
   else r.status = "failed";
@@ -190,11 +161,78 @@ GaitParameters repairLowerLevels(GaitEvaluationCache& cache, GaitParameters p,
   return p;
 }
 
-// The full problem from a computable point, with restarts and the final polish.
+// Largest scaled violation over the computed entries and the speed; +∞ if the motion is not
+// computed.
+double infeasibility(GaitEvaluationCache& cache, const GaitParameters& p,
+                     const OptimizationRequest& req) {
+  const GaitEvaluator& ev = cache.evaluator();
+  const GaitEvaluation<double>& e = cache.values(p);
+  if (!e.motion_computed || (e.failed_level >= 0 && e.failed_level < 5))
+    return std::numeric_limits<double>::infinity();
+  double worst = req.speed ? std::abs(e.speed - *req.speed) : 0.0;
+  for (int k = 0; k < ev.layout().size(); ++k) worst = std::max(worst, scaledValue(ev, e, k));
+  return worst;
+}
+
+// After new points between nodes the optimum is slightly infeasible (~1e-4 scaled), and SLSQP
+// from there stalls: with its fresh quasi-Newton model its first steps are long, and its ℓ1
+// merit, weighted by the new rows' zero multipliers, takes it back to the infeasible point
+// (measured; an Ipopt projection instead took 10–40 s). So first a few Gauss–Newton steps of
+// minimum scaled norm (3.78) onto the near-active rows and the speed, then SLSQP from there.
+GaitParameters restore(GaitEvaluationCache& cache, GaitParameters p,
+                       const OptimizationRequest& req) {
+  const GaitEvaluator& ev = cache.evaluator();
+  const VariableSet vars = gaitVariables(ev.model(), p, ev.options().parameterisation);
+  const GaitParameters w = parameterScales(ev.options().parameterisation);
+  for (int it = 0; it < kRestorationSteps; ++it) {
+    const GaitGradient& gr = cache.gradient(p);
+    if (!gr.value.motion_computed) break;
+    std::vector<int> rows;
+    bool violated = req.speed && std::abs(gr.value.speed - *req.speed) > 0.1 * kFeasibilityTolerance;
+    for (int k = 0; k < ev.layout().size(); ++k) {
+      if (gr.value.state[k] == ConstraintState::NotComputed) continue;
+      const double scaled = scaledValue(ev, gr.value, k);
+      if (scaled > -kRestorationBand) rows.push_back(k);
+      violated = violated || scaled > 0.1 * kFeasibilityTolerance;
+    }
+    if (!violated) break;
+    const int m = static_cast<int>(rows.size()) + (req.speed ? 1 : 0);
+    MatrixX a(m, p.size());
+    VectorX rhs(m);
+    for (int i = 0; i < static_cast<int>(rows.size()); ++i) {
+      const double scale = ev.layout().scaleOf(rows[i]);
+      a.row(i) = gr.dg.row(rows[i]).cwiseProduct(w.transpose()) / scale;
+      rhs(i) = -(gr.value.g[rows[i]] / scale + 2.0 * kInterior);
+    }
+    if (req.speed) {
+      a.row(m - 1) = gr.dspeed.cwiseProduct(w).transpose();
+      rhs(m - 1) = *req.speed - gr.value.speed;
+    }
+    // Levenberg–Marquardt: the rows are many, near-dependent and possibly inconsistent, so the
+    // plain least-squares step can be huge; damping grows until the largest violation drops.
+    const MatrixX normal = a.transpose() * a;
+    const VectorX g = a.transpose() * rhs;
+    const double before = infeasibility(cache, p, req);
+    const double base = normal.trace() / static_cast<double>(p.size());
+    bool improved = false;
+    for (double mu = 1e-10; mu < 1.0 && !improved; mu *= 100.0) {
+      const MatrixX damped = normal + mu * base * MatrixX::Identity(p.size(), p.size());
+      const VectorX u = damped.ldlt().solve(g);
+      const GaitParameters trial = (p + w.cwiseProduct(u)).cwiseMax(vars.lower).cwiseMin(vars.upper);
+      if (infeasibility(cache, trial, req) < before) {
+        p = trial;
+        improved = true;
+      }
+    }
+    if (!improved) break;
+  }
+  return p;
+}
+
+// The full problem from a computable point, with restarts from the last point.
 GaitParameters solveFullProblem(GaitEvaluationCache& cache, GaitParameters p,
                                 const OptimizationRequest& req, std::ostream* log,
                                 OptimizationResult& r, NlpStatus& status) {
-  const GaitEvaluator& ev = cache.evaluator();
   // Objective of order one at the start, so the solver's tolerances are relative.
   const double scale = std::max(1.0, std::abs(criterionValue(cache.values(p), req.criterion)));
   // A quasi-Newton model built across the kinks of the semi-infinite constraints can stall
@@ -216,9 +254,50 @@ GaitParameters solveFullProblem(GaitEvaluationCache& cache, GaitParameters p,
     if (!cache.values(sol.x).motion_computed) continue;  // restart from the last point
     status = sol.status;
     p = sol.x;
-    if (status == NlpStatus::Solved && meetsAll(ev, req, cache.values(p))) break;
+    // SLSQP may stop on its objective tolerance a little outside (measured up to ~1e-5 scaled):
+    // a restoration step to the nearest feasible point costs O(violation) in the criterion.
+    if (status == NlpStatus::Solved && !meetsAll(req, cache.values(p))) p = restore(cache, p, req);
+    if (status == NlpStatus::Solved && meetsAll(req, cache.values(p))) break;
   }
-  return status == NlpStatus::Solved ? polish(cache, p, req, scale, log, r) : p;
+  return p;
+}
+
+// The maxima that are not (nearly) a grid node or an extra point already: a duplicate row would
+// make the NLP degenerate.
+std::vector<double> newPoints(const std::vector<double>& maxima, const ChebyshevGrid& grid,
+                              const std::vector<double>& extra) {
+  std::vector<double> added;
+  const auto near = [](double s, const auto& set) {
+    for (double x : set)
+      if (std::abs(x - s) < kMinPointSpacing) return true;
+    return false;
+  };
+  for (double s : maxima)
+    if (!near(s, grid.nodes()) && !near(s, extra) && !near(s, added)) added.push_back(s);
+  return added;
+}
+
+// Adds the near-active local maxima between nodes as extra constraint points when one of them
+// is violated; false if none is or no new point was found.
+bool addBetweenNodesPoints(const GaitEvaluator& ev, const GaitParameters& p, GaitOptions& o,
+                           std::ostream* log) {
+  BetweenNodesCheck b = checkBetweenNodes(ev, p, -kNearActive);
+  if (!(b.worst_scaled > kBetweenNodesThreshold)) return false;
+  b.ss_maxima = newPoints(b.ss_maxima, ev.ssGrid(), o.ss_extra_points);
+  b.ds_maxima = newPoints(b.ds_maxima, ev.dsGrid(), o.ds_extra_points);
+  if (b.ss_maxima.empty() && b.ds_maxima.empty()) return false;
+  o.ss_extra_points.insert(o.ss_extra_points.end(), b.ss_maxima.begin(), b.ss_maxima.end());
+  o.ds_extra_points.insert(o.ds_extra_points.end(), b.ds_maxima.begin(), b.ds_maxima.end());
+  if (log)
+    *log << "[between nodes] worst " << b.worst_scaled << " (scaled, "
+         << ev.layout()[b.worst_group].name << "): +" << b.ss_maxima.size() << " SS, +"
+         << b.ds_maxima.size() << " DS constraint points (s =";
+  if (log) {
+    for (double s : b.ss_maxima) *log << " SS " << s;
+    for (double s : b.ds_maxima) *log << " DS " << s;
+    *log << ")\n";
+  }
+  return true;
 }
 
 }  // namespace
@@ -227,16 +306,29 @@ OptimizationResult optimizeGait(const GaitEvaluator& ev, const OptimizationReque
                                 std::ostream* log) {
   const auto t0 = std::chrono::steady_clock::now();
   OptimizationResult r;
-  GaitEvaluationCache cache(ev, req.solver.gradients);
   GaitParameters p = gaitVariables(ev.model(), req.initial, ev.options().parameterisation).initial;
-  if (req.solver.hierarchy == HierarchyStrategy::Staged) p = repairLowerLevels(cache, p, req, log, r);
   NlpStatus status = NlpStatus::Failed;
-  if (cache.values(p).motion_computed) p = solveFullProblem(cache, p, req, log, r, status);
+  GaitOptions options = ev.options();
+  // C_Γ needs no kink splitting (its integrand is smooth): 10× cheaper evaluations.
+  options.split_criteria_kinks = req.criterion != Criterion::Torque;
+  for (int round = 0; round <= kMaxBetweenNodesRounds; ++round) {
+    // Each round solves with the constraint points found between nodes so far.
+    const GaitEvaluator work(ev.model().robot, options, ev.model().options);
+    GaitEvaluationCache cache(work, req.solver.gradients);
+    if (round == 0 && req.solver.hierarchy == HierarchyStrategy::Staged)
+      p = repairLowerLevels(cache, p, req, log, r);
+    if (round > 0) p = restore(cache, p, req);
+    const bool computable = cache.values(p).motion_computed;
+    if (computable) p = solveFullProblem(cache, p, req, log, r, status);
+    r.function_evaluations += cache.valueEvaluations();
+    r.gradient_evaluations += cache.gradientEvaluations();
+    if (!computable || status != NlpStatus::Solved || !meetsAll(req, cache.values(p)) ||
+        !addBetweenNodesPoints(ev, p, options, log))
+      break;
+  }
   r.parameters = p;
   r.evaluation = ev.evaluate(p);
   classify(ev, req, status, r);
-  r.function_evaluations = cache.valueEvaluations();
-  r.gradient_evaluations = cache.gradientEvaluations();
   r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

@@ -313,7 +313,9 @@ TEST_CASE("exact gradients of the criteria equal finite differences", "[gait][de
       {"W", [](const GaitEvaluation<double>& e) { return e.W; }, grad.dW},
       {"C_frott", [](const GaitEvaluation<double>& e) { return e.C_frott; }, grad.dC_frott},
   };
-  const GradientCheck r = checkGradient(ev, p, outputs, withoutIndex);
+  // W and C_E are split at their kinks at located roots: the root-location noise enters the
+  // differences (measured 2.9e-5 for W / delta1s_fSS), hence 1e-4 for the criteria.
+  const GradientCheck r = checkGradient(ev, p, outputs, withoutIndex, 1e-4);
   std::printf("  [gait] gradient of the criteria: %d entries checked, %d skipped (kinks), max "
               "err %.3e at %s\n",
               r.checked, r.skipped, r.worst, r.worst_what.c_str());

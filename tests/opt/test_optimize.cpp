@@ -18,6 +18,8 @@
 
 #include "gaitopt/io/config_error.hpp"
 #include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/gait/feasibility.hpp"
+#include "gaitopt/gait/summary.hpp"
 #include "gaitopt/opt/optimizer.hpp"
 #include "gaitopt/opt/gait_problem.hpp"
 #include "gaitopt/io/gait_file.hpp"
@@ -32,6 +34,7 @@ namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 using gaitopt::GaitEvaluation;
 using gaitopt::GaitEvaluator;
+using gaitopt::GaitOptions;
 using gaitopt::GaitParameters;
 using gaitopt::OptimizationResult;
 using gaitopt::OptimizeConfig;
@@ -134,7 +137,7 @@ bool scaledFeasible(const GaitEvaluator& ev, const GaitEvaluation<double>& e,
       ok = false;
       continue;
     }
-    const double scaled = e.g[k] / gaitopt::constraintScale(ev.layout(), ev.model(), k);
+    const double scaled = e.g[k] / ev.layout().scaleOf(k);
     w = std::max(w, scaled);
   }
   if (worst) *worst = w;
@@ -627,4 +630,94 @@ TEST_CASE("optimize: random starts are reproducible from their seed", "[optimize
     CHECK_THAT(block, Contains("\"start\": " + starts));
   }
   CHECK(withoutWallTimes(blocks[0]) == withoutWallTimes(blocks[1]));
+}
+
+// ------------------------------------------------------------------------------------------
+// One feasibility verdict; constraints between the grid nodes
+
+TEST_CASE("optimize: the optimiser's verdict is evaluate's verdict on its own output",
+          "[optimize][verdict]") {
+  const std::string out = scratch().fresh("out_verdict");
+  const CliRun run = runCli("optimize --config " + quoted(kDefaultConfig) + " --out " +
+                            quoted(out) + " --quiet");
+  INFO(run.out << run.err);
+  REQUIRE(run.exit_code == 0);
+  const std::string summary = readFile(out + "/summary.json");
+  CHECK_THAT(summary, Contains("\"status\": \"optimal\""));
+  CHECK_THAT(summary, Contains("\"feasible\": true"));
+  CHECK_THAT(summary, Contains("\"failed_level\": null"));
+  const std::optional<double> tolerance = jsonNumber(summary, "feasibility_tolerance");
+  REQUIRE(tolerance);
+  CHECK(*tolerance == gaitopt::kFeasibilityTolerance);
+  const std::string again = scratch().fresh("out_verdict_evaluate");
+  const CliRun evaluate =
+      runCli("evaluate --gait " + quoted(out + "/gait.yaml") + " --out " + quoted(again));
+  REQUIRE(evaluate.exit_code == 0);
+  CHECK_THAT(evaluate.out, Contains("failed level none"));
+  const std::string check = readFile(again + "/summary.json");
+  CHECK_THAT(check, Contains("\"feasible\": true"));
+  CHECK_THAT(check, Contains("\"failed_level\": null"));
+  const std::optional<double> worst = jsonNumber(check, "worst_scaled");
+  REQUIRE(worst);
+  CHECK(*worst <= gaitopt::kFeasibilityTolerance);
+
+  // The same verdict in the library, and it turns with the tolerance: a step pushed just past
+  // a bound is infeasible for both, one within the tolerance feasible for both.
+  const gaitopt::GaitFile gait = gaitopt::loadGaitFile(out + "/gait.yaml");
+  const GaitEvaluator ev(gait.robot, gait.options, gait.model_options);
+  const GaitEvaluation<double> e = ev.evaluate(gait.parameters);
+  const gaitopt::FeasibilityVerdict v = gaitopt::feasibilityVerdict(ev, gait.parameters, e);
+  CHECK(v.feasible);
+  CHECK(v.failed_level == -1);
+  GaitOptions tighter = gait.options;
+  // The minimum normal force raised by 10 tolerances of its scale (M g): level 5 fails.
+  const double weight = ev.model().total_mass * ev.model().gravity;
+  tighter.min_normal_force += 10.0 * gaitopt::kFeasibilityTolerance * weight;
+  const GaitEvaluator ev_tight(gait.robot, tighter, gait.model_options);
+  const GaitEvaluation<double> et = ev_tight.evaluate(gait.parameters);
+  const gaitopt::FeasibilityVerdict vt = gaitopt::feasibilityVerdict(ev_tight, gait.parameters, et);
+  // The normal force is active at this optimum (rear foot at the DS end).
+  INFO("normal force bound raised by " << 10.0 * gaitopt::kFeasibilityTolerance * weight << " N");
+  CHECK_FALSE(vt.feasible);
+  CHECK(vt.failed_level == 5);
+  CHECK_THAT(gaitopt::gaitSummaryJson(ev_tight, gait.parameters, et),
+             Contains("\"failed_level\": 5"));
+  GaitOptions within = gait.options;
+  within.min_normal_force += 0.1 * gaitopt::kFeasibilityTolerance * weight;
+  const GaitEvaluator ev_within(gait.robot, within, gait.model_options);
+  CHECK(gaitopt::feasibilityVerdict(ev_within, gait.parameters,
+                                    ev_within.evaluate(gait.parameters))
+            .feasible);
+}
+
+TEST_CASE("optimize: a violation between the grid nodes is caught and fixed",
+          "[optimize][between_nodes]") {
+  // Coarse grids (16 SS, 8 DS intervals): the node-only optimum bends between the nodes.
+  OptimizeConfig config = gaitopt::loadOptimizeConfig(kDefaultConfig);
+  config.options.ss_nodes = 16;
+  config.options.ds_nodes = 8;
+  const GaitEvaluator ev(config.robot, config.options, config.model_options);
+  const GaitParameters start = gaitopt::configuredInitialGuess(config, ev.model());
+  std::ostringstream log;
+  gaitopt::OptimizationRequest req = gaitopt::optimizationRequest(config, start);
+  req.solver.print_every = 0;
+  const OptimizationResult r = gaitopt::optimizeGait(ev, req, &log);
+  INFO(log.str());
+  INFO("status " << r.status << ", C_Gamma " << r.evaluation.C_Gamma);
+  // Caught: the first solve met every node but not the refined check, so points were added.
+  CHECK_THAT(log.str(), Contains("[between nodes]"));
+  REQUIRE(r.status == "optimal");
+  CHECK(r.between_nodes_worst_scaled <= gaitopt::kFeasibilityTolerance);
+  // Fixed, independently of the 10x check: 25x finer grids find no violation either.
+  GaitOptions fine = config.options;
+  fine.ss_nodes = 200;
+  fine.ds_nodes = 150;
+  const GaitEvaluator ev_fine(config.robot, fine, config.model_options);
+  const GaitEvaluation<double> e = ev_fine.evaluate(r.parameters);
+  REQUIRE(e.motion_computed);
+  double worst = -1.0;
+  for (int k = 0; k < ev_fine.layout().size(); ++k)
+    worst = std::max(worst, e.g[k] / ev_fine.layout().scaleOf(k));
+  INFO("worst scaled value on the 25x grid " << worst);
+  CHECK(worst <= 2.0 * gaitopt::kFeasibilityTolerance);
 }

@@ -12,6 +12,8 @@
 
 namespace gaitopt {
 
+struct Model;
+
 enum ConstraintGroupId : int {
   kReachMaxIDS, kReachMinIDS, kReachMaxFDS, kReachMinFDS, kReachMaxInt, kReachMinInt,  // level 0
   kAlphaOrderDS, kAlphaOrderSS, kTibiaFront, kTibiaRear,                              // level 1
@@ -27,12 +29,24 @@ enum ConstraintGroupId : int {
 
 constexpr int kNumLevels = 6;
 
+// The one feasibility tolerance of gaitopt: an entry counts as violated when
+// g > kFeasibilityTolerance × (its group's typical magnitude, ConstraintGroup::scale), the
+// speed when |speed − target| > kFeasibilityTolerance × 1 m/s. The evaluator's hierarchy, the
+// optimiser's status, summary.json and `gaitopt evaluate` all use it (gait/feasibility.hpp).
+constexpr double kFeasibilityTolerance = 1e-6;
+
+enum class ConstraintPhase : unsigned char { None, SingleSupport, DoubleSupport };
+
 struct ConstraintGroup {
   std::string name;
   int level;
   std::string equation;  // thesis reference
   int offset;            // first entry in the flat vector
   int count;
+  double scale;          // typical magnitude of the values (the optimiser sees g / scale)
+  ConstraintPhase phase;  // phase-wise (semi-infinite) groups: one block of entries per point
+  int per_point;          // entries per grid point (phase-wise groups)
+  int first_point;        // first grid point carrying the group (1 for the clearance)
 };
 
 // State of one entry after an evaluation.
@@ -44,16 +58,24 @@ enum class ConstraintState : unsigned char {
 
 class ConstraintLayout {
  public:
-  explicit ConstraintLayout(const GaitOptions& options);
+  // Phase-wise groups have one block per Chebyshev node of the phase, then one per extra point
+  // of options.ss_extra_points / ds_extra_points.
+  ConstraintLayout(const GaitOptions& options, const Model& model);
   const std::vector<ConstraintGroup>& groups() const { return groups_; }
   const ConstraintGroup& operator[](int id) const { return groups_[id]; }
   int size() const { return size_; }
   int levelOf(int entry) const;
   bool has(int group) const { return groups_[group].count > 0; }
+  int groupOf(int entry) const { return entry_group_[entry]; }
+  double scaleOf(int entry) const { return groups_[entry_group_[entry]].scale; }
+  // Whether the value g of an entry exceeds the feasibility tolerance.
+  bool violates(int entry, double g) const {
+    return g > kFeasibilityTolerance * scaleOf(entry);
+  }
 
  private:
   std::vector<ConstraintGroup> groups_;
-  std::vector<int> entry_level_;
+  std::vector<int> entry_level_, entry_group_;
   int size_ = 0;
 };
 

@@ -35,12 +35,13 @@ template <class S> struct EvalContext {
     out.g[k] = value;
     out.state[k] = state;
   }
-  // Lowest level ≤ max_level with a violated computed entry, or −1.
+  // Lowest level ≤ max_level with a computed entry violated beyond the feasibility tolerance,
+  // or −1 (the margins of levels 0–1 exceed that tolerance, so their IK stays computable).
   int lowestViolated(int max_level) const {
     int lowest = -1;
     for (int k = 0; k < layout.size(); ++k)
       if (out.state[k] != ConstraintState::NotComputed && layout.levelOf(k) <= max_level &&
-          valueOf(out.g[k]) > 0.0 && (lowest < 0 || layout.levelOf(k) < lowest))
+          layout.violates(k, valueOf(out.g[k])) && (lowest < 0 || layout.levelOf(k) < lowest))
         lowest = layout.levelOf(k);
     return lowest;
   }
@@ -255,7 +256,7 @@ S cyclicStartRate(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts, Con
   using std::sqrt;
   constexpr double kOrbitMargin = 1e-3;
   const GaitMotion<S>& mo = c.out.motion;
-  const S f_f = saturatedF(S(pts.back().tau_a(0)), c.options.f_min);
+  const S f_f = saturatedF(S(pts[c.ss_grid.size() - 1].tau_a(0)), c.options.f_min);
   const S r2 = squared(S(mo.f_iSS * mo.landing.rate_ratio / f_f));
   const S phi_f = mo.ss_phi(mo.ss_phi.size() - 1);
   c.set(kImpactOrbit, 0, r2 - (1.0 - kOrbitMargin), st);
@@ -263,6 +264,24 @@ S cyclicStartRate(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts, Con
         squared(c.options.alphadot_margin) * (1.0 - r2) - r2 * phi_f / squared(mo.f_iSS), st);
   const S sigma2 = valueOf(r2) < 1.0 ? S(r2 * phi_f / (1.0 - r2)) : S(0.0);
   return valueOf(sigma2) > 0.0 ? S(-sqrt(sigma2) / mo.f_iSS) : S(0.0);
+}
+
+// Extra SS constraint points (options.ss_extra_points, Chebyshev coordinates): path terms and
+// the level-2 constraint there, appended to the node points.
+template <class S>
+void ssExtraPoints(EvalContext<S>& c, std::vector<SsPathPoint<S>>& pts, ConstraintState st) {
+  const GaitMotion<S>& mo = c.out.motion;
+  for (double s : c.options.ss_extra_points) {
+    pts.push_back(ssPathPoint(c.model, mo, chebyshevToInterval(s, mo.alpha_iSS, mo.alpha_fSS)));
+    c.set(kFPositive, static_cast<int>(pts.size()) - 1, c.options.f_min - pts.back().tau_a(0), st);
+  }
+}
+
+// Φ at SS point k: a node value, or its spectral interpolant at an extra point.
+template <class S> S ssPhiAt(const EvalContext<S>& c, int k) {
+  const int n = c.ss_grid.size();
+  if (k < n) return c.out.motion.ss_phi(k);
+  return c.ss_grid.interpolate(c.out.motion.ss_phi, c.options.ss_extra_points[k - n]);
 }
 
 template <class S> void zeroDynamicsStage(EvalContext<S>& c, std::vector<SsPathPoint<S>>& pts) {
@@ -282,17 +301,18 @@ template <class S> void zeroDynamicsStage(EvalContext<S>& c, std::vector<SsPathP
   }
   mo.ss_phi = cumulativeOverInterval(c.ss_grid, dphi, mo.alpha_iSS, mo.alpha_fSS);
   mo.f_iSS = saturatedF(S(pts[0].tau_a(0)), o.f_min);
+  ssExtraPoints(c, pts, st);
 
   const ConstraintState st3 = c.stateAbove(2);
   const bool cyclic_ss = !o.parameterisation.hasDoubleSupport();
   const S a_i = cyclic_ss ? cyclicStartRate(c, pts, st3) : c.p(kAlphadotISS);
   if (!cyclic_ss) c.set(kAlphadotNegative, 0, a_i + o.alphadot_margin, st3);
   int worst = 0;
-  for (int k = 0; k < n; ++k) {
+  for (int k = 0; k < static_cast<int>(pts.size()); ++k) {
     // (3.55) divided by f_i²: a margin ε² on σ²/f_i².
     c.set(kNoFallBack, k,
-          -(mo.ss_phi(k) / squared(mo.f_iSS) + a_i * a_i) + squared(o.alphadot_margin), st3);
-    if (valueOf(mo.ss_phi(k)) < valueOf(mo.ss_phi(worst))) worst = k;
+          -(ssPhiAt(c, k) / squared(mo.f_iSS) + a_i * a_i) + squared(o.alphadot_margin), st3);
+    if (k < n && valueOf(mo.ss_phi(k)) < valueOf(mo.ss_phi(worst))) worst = k;
   }
   // (3.56), with the corrected sign of ε (α̇ < 0).
   const S phi_min = mo.ss_phi(worst);
@@ -366,14 +386,20 @@ template <class S> DsPrescribed<S> dsPrescribed(const GaitMotion<S>& mo, const S
   return r;
 }
 
+template <class S> S dsExtraTime(const EvalContext<S>& c, int i) {
+  return chebyshevToInterval(c.options.ds_extra_points[i], S(0.0), c.out.motion.T_DS);
+}
+
 template <class S> bool dsReachStage(EvalContext<S>& c) {
   GaitMotion<S>& mo = c.out.motion;
   const auto ts = mappedNodes(c.ds_grid, S(0.0), mo.T_DS);
   const double L = c.model.robot.l4 + c.model.robot.l5;
   const ConstraintState st = c.stateAbove(3);
   bool reachable = true;  // the DS inverse kinematics exists at every node
-  for (int k = 0; k < c.ds_grid.size(); ++k) {
-    const DsPrescribed<S> pr = dsPrescribed(mo, S(ts(k)));
+  const int n = c.ds_grid.size();
+  for (int k = 0; k < n + static_cast<int>(c.options.ds_extra_points.size()); ++k) {
+    const S t = k < n ? S(ts(k)) : dsExtraTime(c, k - n);
+    const DsPrescribed<S> pr = dsPrescribed(mo, t);
     const S rho2 = rearFootFromHip(c.model, pr.alpha, pr.d1, mo.d).squaredNorm();
     c.set(kDsReachMax, k, rho2 - L * L + c.options.reach_margin, st);  // (3.41)
     c.set(kDsReachMin, k, c.options.reach_margin - rho2, st);
@@ -483,6 +509,27 @@ void setContactConstraints(EvalContext<S>& c, int cone_group, int normal_group, 
   c.set(cone_group, 2 * (feet * k + foot), -f * R(1) - R(0), st);  // (3.48)
   c.set(cone_group, 2 * (feet * k + foot) + 1, -f * R(1) + R(0), st);
   c.set(normal_group, feet * k + foot, c.options.min_normal_force - R(1), st);
+}
+
+// Level-5 constraints at SS point k; the clearance (3.49) only on the open interval (gap #16),
+// where it has entry `clearance_entry` (none at the phase ends).
+template <class S>
+void setSsPointConstraints(EvalContext<S>& c, int k, int clearance_entry, const PhaseSample<S>& s,
+                           ConstraintState st) {
+  setPhaseConstraints(c, kTorqueSS, kJointLimitsSS, k, s, st);
+  setContactConstraints(c, kFrictionConeSS, kNormalForceSS, 0, 1, k, s.R1, st);
+  if (k == 0 || k == c.ss_grid.size() - 1) return;
+  const S x = s.foot2(0) / c.out.motion.d;
+  c.set(kClearance, clearance_entry,
+        -(s.foot2(1) - c.options.clearance_height * (1.0 - x * x)), st);
+}
+
+template <class S>
+void setDsPointConstraints(EvalContext<S>& c, int k, const PhaseSample<S>& s, ConstraintState st) {
+  setPhaseConstraints(c, kTorqueDS, kJointLimitsDS, k, s, st);
+  setContactConstraints(c, kFrictionConeDS, kNormalForceDS, 0, 2, k, s.R1, st);
+  setContactConstraints(c, kFrictionConeDS, kNormalForceDS, 1, 2, k, s.R2, st);
+  c.set(kDsMonotone, k, s.qd(0) - c.options.ds_alphadot_max, st);  // (3.43)
 }
 
 // Integrands of the criteria at one sample: Γ*ᵀΓ*, max(0, electrical power), Σ|Γ*_j ω_j|, Γ*ᵀω.
@@ -603,6 +650,119 @@ std::array<S, 4> integrateDsPiecewise(EvalContext<S>& c, const DsPieces& pieces)
   return total;
 }
 
+// ---------------------------------------------------------------------------------------------
+// W and C_E at spectral accuracy. Their integrands Σ|Γ*_j ω_j| (3.147) and max(0, P) (3.32)
+// have kinks where a Γ*_j ω_j or the electrical power P vanishes; the quadrature is split there,
+// each piece integrated with the signs fixed, and each split point differentiated by the
+// implicit-function theorem (as the DS branch switches).
+
+constexpr int kKinkScan = 8;
+
+// The kink functions at a sample: Γ*_j ω_j (j = 0..3) and P.
+template <class S> std::array<S, 5> kinkFunctions(const Model& m, const PhaseSample<S>& s) {
+  std::array<S, 5> k;
+  for (int j = 0; j < 4; ++j) k[j] = s.gamma_star(j) * s.omega(j);
+  k[4] = s.gamma_star.dot(s.omega) + jouleCoefficient(m) * s.gamma_star.squaredNorm();
+  return k;
+}
+
+// ∫_a^b of the W and C_E integrands; sample(u) gives the kink functions at u and the weight
+// dt/du. Roots are located on the values (so the double and AD passes find the same ones).
+template <class S, class Sample>
+std::array<S, 2> integrateKinked(const ChebyshevGrid& grid, const S& a, const S& b,
+                                 const Sample& sample) {
+  const auto fn = [&sample](double u, int i) { return valueOf(sample(S(u)).first[i]); };
+  const auto us = mappedNodes(grid, a, b);
+  std::vector<std::array<double, 5>> node(grid.size());
+  for (int k = 0; k < grid.size(); ++k)
+    for (int i = 0; i < 5; ++i) node[k][i] = fn(valueOf(us(k)), i);
+  // Sign changes of each function's spectral interpolant, sampled kKinkScan times per node
+  // interval (a lobe between two nodes of equal sign is found too), then located on the function.
+  std::vector<std::pair<double, int>> roots;
+  Eigen::VectorXd values(grid.size());
+  for (int i = 0; i < 5; ++i) {
+    for (int k = 0; k < grid.size(); ++k) values(k) = node[k][i];
+    const auto f = [&fn, i](double u) { return fn(u, i); };
+    for (int k = 0; k + 1 < grid.size(); ++k) {
+      const double s0 = grid.nodes()[k], s1 = grid.nodes()[k + 1];
+      double lo = s0, f_lo = node[k][i];
+      for (int j = 1; j <= kKinkScan; ++j) {
+        const double hi = j == kKinkScan ? s1 : s0 + (s1 - s0) * j / kKinkScan;
+        const double f_hi = j == kKinkScan ? node[k + 1][i] : grid.interpolate(values, hi);
+        if ((f_lo < 0.0) != (f_hi < 0.0)) {
+          const double u_lo = valueOf(chebyshevToInterval(lo, a, b));
+          const double u_hi = valueOf(chebyshevToInterval(hi, a, b));
+          const double g_lo = f(u_lo), g_hi = f(u_hi);
+          if ((g_lo < 0.0) != (g_hi < 0.0)) roots.push_back({switchTime(f, u_lo, g_lo, u_hi, g_hi), i});
+        }
+        lo = hi;
+        f_lo = f_hi;
+      }
+    }
+  }
+  const bool increasing = valueOf(a) < valueOf(b);
+  std::sort(roots.begin(), roots.end(), [increasing](const auto& x, const auto& y) {
+    return increasing ? x.first < y.first : x.first > y.first;
+  });
+  std::vector<S> ends{a};
+  const double h = 1e-7 * std::abs(valueOf(b) - valueOf(a));
+  for (const auto& [u, i] : roots) {
+    const double rate = (fn(u + h, i) - fn(u - h, i)) / (2.0 * h);
+    ends.push_back(rate != 0.0 && std::isfinite(rate) ? S(S(u) - sample(S(u)).first[i] / rate)
+                                                      : S(u));
+  }
+  ends.push_back(b);
+  std::array<S, 2> total{S(0.0), S(0.0)};
+  Eigen::Matrix<S, Eigen::Dynamic, 1> w(grid.size()), e(grid.size());
+  for (std::size_t piece = 0; piece + 1 < ends.size(); ++piece) {
+    std::array<double, 5> sign;
+    const double mid = 0.5 * (valueOf(ends[piece]) + valueOf(ends[piece + 1]));
+    for (int i = 0; i < 5; ++i) sign[i] = fn(mid, i) < 0.0 ? -1.0 : 1.0;
+    const auto nodes = mappedNodes(grid, ends[piece], ends[piece + 1]);
+    for (int k = 0; k < grid.size(); ++k) {
+      const auto [kink, weight] = sample(S(nodes(k)));
+      S abs_power(0.0);
+      for (int j = 0; j < 4; ++j) abs_power += sign[j] * kink[j];
+      w(k) = abs_power * weight;
+      e(k) = sign[4] > 0.0 ? S(kink[4] * weight) : S(0.0);
+    }
+    total[0] += integrateOverInterval(grid, w, ends[piece], ends[piece + 1]);
+    total[1] += integrateOverInterval(grid, e, ends[piece], ends[piece + 1]);
+  }
+  return total;
+}
+
+// W and C_E per phase, split at their kinks: the SS over α (weight 1/α̇, Φ by its spectral
+// interpolant), the DS over t within each force-distribution piece.
+template <class S> std::array<S, 2> kinkedCriteria(EvalContext<S>& c) {
+  const GaitMotion<S>& mo = c.out.motion;
+  const auto ss = [&c, &mo](const S& alpha) {
+    const SsPathPoint<S> pt = ssPathPoint(c.model, mo, alpha);
+    const S phi = c.ss_grid.interpolate(mo.ss_phi,
+                                        intervalToChebyshev(alpha, mo.alpha_iSS, mo.alpha_fSS));
+    S ad, add;
+    zeroDynamicsRates(pt, phi, mo, c.options.f_min, ad, add);
+    return std::make_pair(kinkFunctions(c.model, ssSample(c.model, pt, ad, add)), S(1.0 / ad));
+  };
+  std::array<S, 2> total = integrateKinked(c.ss_grid, mo.alpha_iSS, mo.alpha_fSS, ss);
+  if (!c.options.parameterisation.hasDoubleSupport()) return total;
+  const DsPieces& pieces = c.out.ds_pieces;
+  const std::size_t n = pieces.switch_times.size();
+  for (std::size_t piece = 0; piece <= n; ++piece) {
+    const S a = piece == 0 ? S(0.0) : switchTimeWithDerivative(c, pieces, int(piece) - 1);
+    const S b = piece == n ? mo.T_DS : switchTimeWithDerivative(c, pieces, int(piece));
+    const int branch = n == 0 ? kBranchFree : pieces.branches[piece];
+    const auto ds = [&c, &mo, branch](const S& t) {
+      return std::make_pair(kinkFunctions(c.model, dsSample(c.model, c.options, mo, t, branch)),
+                            S(1.0));
+    };
+    const std::array<S, 2> part = integrateKinked(c.piece_grid, a, b, ds);
+    total[0] += part[0];
+    total[1] += part[1];
+  }
+  return total;
+}
+
 // Level-5 constraints of the DS and its integrals of the criteria integrands.
 template <class S> std::array<S, 4> dsMotionStage(EvalContext<S>& c, ConstraintState st) {
   GaitMotion<S>& mo = c.out.motion;
@@ -617,13 +777,12 @@ template <class S> std::array<S, 4> dsMotionStage(EvalContext<S>& c, ConstraintS
     const PhaseSample<S> s = dsSample(c.model, o, mo, S(ts(k)));
     for (int i = 0; i < 6; ++i) switching[k][i] = valueOf(s.switching[i]);
     branch[k] = s.branch;
-    setPhaseConstraints(c, kTorqueDS, kJointLimitsDS, k, s, st);
-    setContactConstraints(c, kFrictionConeDS, kNormalForceDS, 0, 2, k, s.R1, st);
-    setContactConstraints(c, kFrictionConeDS, kNormalForceDS, 1, 2, k, s.R2, st);
-    c.set(kDsMonotone, k, s.qd(0) - o.ds_alphadot_max, st);  // (3.43)
+    setDsPointConstraints(c, k, s, st);
     const std::array<S, 4> in = criteriaIntegrands(c.model, s);
     for (int i = 0; i < 4; ++i) ds_int[i](k) = in[i];
   }
+  for (int i = 0; i < static_cast<int>(o.ds_extra_points.size()); ++i)
+    setDsPointConstraints(c, nds + i, dsSample(c.model, o, mo, dsExtraTime(c, i)), st);
   c.out.ds_pieces = c.known_pieces ? *c.known_pieces : dsPieces(c, ts, branch, switching);
   return c.out.ds_pieces.switch_times.empty() ? integrateEach(c.ds_grid, ds_int, S(0.0), mo.T_DS)
                                               : integrateDsPiecewise(c, c.out.ds_pieces);
@@ -640,14 +799,14 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
   for (int k = 0; k < nss; ++k) {
     const S& ad = mo.ss_alphadot(k);
     const PhaseSample<S> s = ssSample(c.model, pts[k], ad, mo.ss_alphaddot(k));
-    setPhaseConstraints(c, kTorqueSS, kJointLimitsSS, k, s, st);
-    setContactConstraints(c, kFrictionConeSS, kNormalForceSS, 0, 1, k, s.R1, st);
-    if (k > 0 && k < nss - 1) {  // (3.49) on the open interval (gap #16)
-      const S x = s.foot2(0) / mo.d;
-      c.set(kClearance, k - 1, -(s.foot2(1) - o.clearance_height * (1.0 - x * x)), st);
-    }
+    setSsPointConstraints(c, k, k - 1, s, st);
     const std::array<S, 4> in = criteriaIntegrands(c.model, s);
     for (int i = 0; i < 4; ++i) ss_int[i](k) = in[i] / ad;  // dt = dα / α̇ (3.29)
+  }
+  for (int k = nss; k < static_cast<int>(pts.size()); ++k) {  // extra points: constraints only
+    S ad, add;
+    zeroDynamicsRates(pts[k], ssPhiAt(c, k), mo, o.f_min, ad, add);
+    setSsPointConstraints(c, k, k - 2, ssSample(c.model, pts[k], ad, add), st);
   }
   // Without DS the impact's energy loss is resupplied by the motors within the SS (cyclicity).
   std::array<S, 4> ds_total{S(0.0), S(0.0), S(0.0), S(0.0)};
@@ -657,6 +816,11 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
     crit[i] = (integrateOverInterval(c.ss_grid, ss_int[i], mo.alpha_iSS, mo.alpha_fSS) +
                ds_total[i]) /
               mo.d;  // (3.28)
+  if (o.split_criteria_kinks) {
+    const std::array<S, 2> kinked = kinkedCriteria(c);
+    crit[2] = kinked[0] / mo.d;
+    crit[1] = kinked[1] / mo.d;
+  }
   c.out.C_Gamma = crit[0];
   c.out.C_E = crit[1];
   c.out.W = crit[2];

@@ -1,4 +1,6 @@
 #pragma once
+#include <vector>
+
 #include "gaitopt/gait/parameters.hpp"
 // Options of a gait evaluation: the choices the thesis leaves open (digest §6), each with a
 // documented default.
@@ -39,6 +41,13 @@ struct GaitOptions {
   double joint_limit_margin = 0.0;    // on (3.39), (3.42) [rad]
   bool full_torque_envelope = true;   // (3.47) with its sloped parts, not only the 140 N·m plateau
   double target_speed = 0.0;          // > 0: report the speed constraint (3.50) [m/s]
+  // Extra points of the phase-wise constraints, in the Chebyshev coordinate s ∈ (−1, 1) of the
+  // phase (SS: α from α_iSS at s = 1 to α_fSS; DS: t from 0 to T_DS). Set by the optimiser's
+  // exchange method on continuous α and t (local maxima between nodes), never read from files.
+  std::vector<double> ss_extra_points, ds_extra_points;
+  // W and C_E split at the kinks of their integrands (spectral accuracy, ~10× the evaluation
+  // cost); the optimiser turns it off when it minimises C_Γ and reports with it on.
+  bool split_criteria_kinks = true;
 };
 
 }  // namespace gaitopt

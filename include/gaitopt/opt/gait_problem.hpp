@@ -27,9 +27,6 @@ std::unique_ptr<CostTerm> makeCriterionCost(GaitEvaluationCache& cache, Criterio
                                             double scale);
 std::unique_ptr<CostTerm> makeDistanceCost(const GaitParameters& reference,
                                            const Parameterisation& parameterisation);
-// Typical magnitude of a constraint group's values (the optimiser sees g / scale, O(1)).
-double constraintGroupScale(int group, const Model& model);
-double constraintScale(const ConstraintLayout& layout, const Model& model, int entry);
 // Layout entries of every level ≤ max_level.
 std::vector<int> hierarchyEntries(const ConstraintLayout& layout, int max_level);
 // The given layout entries as g / scale ≤ −interior for levels 0–4 (the evaluator fails them

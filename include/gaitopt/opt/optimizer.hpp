@@ -56,6 +56,7 @@ struct OptimizationResult {
   double constraint_violation = 0.0;  // max over all levels and the speed, unscaled
   int unmet_level = -1;               // lowest level with an unmet constraint
   std::vector<std::string> unmet_constraints;
+  double between_nodes_worst_scaled = 0.0;  // worst phase-wise g/scale on the 10× refined grid
   std::vector<StageReport> stages;
 };
 
