@@ -253,11 +253,15 @@ GaitParameters solveFullProblem(GaitEvaluationCache& cache, GaitParameters p,
     }
     if (!cache.values(sol.x).motion_computed) continue;  // restart from the last point
     status = sol.status;
+    const GaitParameters start = p;
     p = sol.x;
     // SLSQP may stop on its objective tolerance a little outside (measured up to ~1e-5 scaled):
     // a restoration step to the nearest feasible point costs O(violation) in the criterion.
     if (status == NlpStatus::Solved && !meetsAll(req, cache.values(p))) p = restore(cache, p, req);
     if (status == NlpStatus::Solved && meetsAll(req, cache.values(p))) break;
+    // A restart from the same point repeats the same run (measured: SLSQP returning its start
+    // after new points between nodes).
+    if (p == start) break;
   }
   return p;
 }
@@ -322,8 +326,10 @@ OptimizationResult optimizeGait(const GaitEvaluator& ev, const OptimizationReque
     if (computable) p = solveFullProblem(cache, p, req, log, r, status);
     r.function_evaluations += cache.valueEvaluations();
     r.gradient_evaluations += cache.gradientEvaluations();
-    if (!computable || status != NlpStatus::Solved || !meetsAll(req, cache.values(p)) ||
-        !addBetweenNodesPoints(ev, p, options, log))
+    // A re-solve that stalls at a point meeting every node and extra point still gets the next
+    // exchange round (its new points and restoration can unblock it).
+    if (!computable || (status != NlpStatus::Solved && round == 0) ||
+        !meetsAll(req, cache.values(p)) || !addBetweenNodesPoints(ev, p, options, log))
       break;
   }
   r.parameters = p;
