@@ -28,7 +28,7 @@ constexpr double kInterior = 1e-6;
 // inside would then be violated, costing one more solve (measured: 4 solves instead of 2).
 constexpr double kBetweenNodesThreshold = 0.25 * kFeasibilityTolerance;
 constexpr double kNearActive = 1e-3;
-constexpr int kMaxBetweenNodesRounds = 4;
+constexpr int kMaxBetweenNodesRounds = 8;  // a maximum that drifts needs more (coarse grids)
 constexpr double kMinPointSpacing = 1e-4;  // in the Chebyshev coordinate of the phase
 // Restoration after new points: Gauss–Newton steps on the rows within this (scaled) band.
 constexpr int kRestorationSteps = 8;

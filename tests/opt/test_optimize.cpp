@@ -669,21 +669,22 @@ TEST_CASE("optimize: the optimiser's verdict is evaluate's verdict on its own ou
   const gaitopt::FeasibilityVerdict v = gaitopt::feasibilityVerdict(ev, gait.parameters, e);
   CHECK(v.feasible);
   CHECK(v.failed_level == -1);
+  // The speed, an equality always active: its target moved by 10 tolerances (m/s) fails level
+  // 5 with "speed", by 0.1 tolerance stays met.
+  REQUIRE(e.speed > 0.0);
+  REQUIRE(std::abs(e.speed - gait.options.target_speed) <= 0.5 * gaitopt::kFeasibilityTolerance);
   GaitOptions tighter = gait.options;
-  // The minimum normal force raised by 10 tolerances of its scale (M g): level 5 fails.
-  const double weight = ev.model().total_mass * ev.model().gravity;
-  tighter.min_normal_force += 10.0 * gaitopt::kFeasibilityTolerance * weight;
+  tighter.target_speed += 10.0 * gaitopt::kFeasibilityTolerance;
   const GaitEvaluator ev_tight(gait.robot, tighter, gait.model_options);
   const GaitEvaluation<double> et = ev_tight.evaluate(gait.parameters);
   const gaitopt::FeasibilityVerdict vt = gaitopt::feasibilityVerdict(ev_tight, gait.parameters, et);
-  // The normal force is active at this optimum (rear foot at the DS end).
-  INFO("normal force bound raised by " << 10.0 * gaitopt::kFeasibilityTolerance * weight << " N");
   CHECK_FALSE(vt.feasible);
   CHECK(vt.failed_level == 5);
+  CHECK(vt.unmet_groups == std::vector<std::string>{"speed"});
   CHECK_THAT(gaitopt::gaitSummaryJson(ev_tight, gait.parameters, et),
              Contains("\"failed_level\": 5"));
   GaitOptions within = gait.options;
-  within.min_normal_force += 0.1 * gaitopt::kFeasibilityTolerance * weight;
+  within.target_speed += 0.1 * gaitopt::kFeasibilityTolerance;
   const GaitEvaluator ev_within(gait.robot, within, gait.model_options);
   CHECK(gaitopt::feasibilityVerdict(ev_within, gait.parameters,
                                     ev_within.evaluate(gait.parameters))
