@@ -51,7 +51,8 @@ PhaseEnd doubleSupportWithSensitivity(const ClosedLoop& s, const SensitiveState&
   z0.x.resize(12);
   z0.x << plus.x, plus.x(0), plus.x(5);
   z0.S.resize(12, plus.S.cols());
-  z0.S << plus.S, plus.S.row(0), plus.S.row(5);
+  if (plus.S.cols() > 0)  // (no sensitivities: a 0-column block of a null pointer is UB)
+    z0.S << plus.S, plus.S.row(0), plus.S.row(5);
   const double t_end = dsReference(s, 0.0, plus.x.head<5>(), plus.x.segment<5>(5)).t_end;
   const PhaseEnd lift = flowWithSensitivity(ds, z0, t_end, tol);
   if (optimal && !lift.event)
