@@ -211,11 +211,17 @@ void removeTemporariesOnInterrupt() {
   std::thread([signals]() {
     int received = 0;
     if (sigwait(&signals, &received) != 0) return;
-    {
-      std::lock_guard<std::mutex> lock(temporaries().mutex);
-      std::error_code ignored;
-      for (const std::string& path : temporaries().paths) fs::remove_all(path, ignored);
-      temporaries().paths.clear();
+    // The lock is kept until the process ends: no temporary is registered or committed after
+    // the removal. Workers still writing may add a file while remove_all walks a directory (its
+    // last rmdir then fails), so each removal is repeated until the path is gone.
+    temporaries().mutex.lock();
+    for (const std::string& path : temporaries().paths) {
+      std::error_code ec;
+      for (int attempt = 0; attempt < 100 && fs::symlink_status(path, ec).type() !=
+                                                  fs::file_type::not_found;
+           ++attempt) {
+        fs::remove_all(path, ec);
+      }
     }
     std::signal(received, SIG_DFL);
     pthread_sigmask(SIG_UNBLOCK, &signals, nullptr);

@@ -69,7 +69,12 @@ OptimizationOutputs optimizationOutputs(const GaitEvaluator& evaluator,
 
 void writeOptimizationOutputs(const std::string& dir, const OptimizationOutputs& outputs) {
   const fs::path d(dir);
-  fs::create_directories(d);
+  // Only the leaf: after an interrupt has removed a staging directory, a sweep worker must not
+  // bring it back by creating its parents (the temporary would outlive the run).
+  std::error_code ec;
+  if (!fs::create_directory(d, ec) && ec) {
+    throw std::runtime_error("cannot create '" + dir + "': " + ec.message());
+  }
   writeFileAtomically((d / "summary.json").string(), outputs.summary_json);
   writeFileAtomically((d / "gait.yaml").string(), outputs.gait_yaml);
   if (outputs.trajectory_csv) {
