@@ -1,5 +1,6 @@
 // `gaitopt diagnose`: what the model gets wrong on measured data, the cause, the extended model
 // and its gain on held-out steps.
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -18,6 +19,7 @@ namespace {
 struct DiagnoseArgs {
   std::string robot, data, out, effects;
   int holdout = 3, holdout_shift = 0;
+  bool quiet = false;
 };
 
 std::vector<EffectKind> parseKinds(const std::string& list) {
@@ -56,8 +58,17 @@ void registerDiagnoseCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0, 1000000));
   cmd->add_option("--effects", args->effects,
                   "Comma-separated candidate effects (default: all), e.g. coulomb,viscous");
+  cmd->add_flag("--quiet", args->quiet, "No progress lines");
   cmd->callback([args, &exit_code]() {
     DiagnoseOptions options;
+    const auto start = std::chrono::steady_clock::now();
+    if (!args->quiet)
+      options.on_progress = [start](const std::string& stage, int done, int total) {
+        const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+        std::cout << "diagnose [" << done << "/" << total << "] " << stage << "  "
+                  << elapsedAndRemaining(elapsed.count(), done, total) << "\n"
+                  << std::flush;
+      };
     options.holdout = args->holdout;
     options.holdout_shift = args->holdout_shift;
     if (!args->effects.empty()) options.kinds = parseKinds(args->effects);

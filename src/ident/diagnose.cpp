@@ -562,6 +562,10 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
   if (o.holdout < 2) throw std::invalid_argument("--holdout must be >= 2");
   if (o.holdout_shift < 0) throw std::invalid_argument("--holdout-shift must be >= 0");
   const PreparedData prepared(data, o.preprocess);
+  const int stages = 2 + o.max_causes + 1;
+  const auto progress = [&](const std::string& stage, int done) {
+    if (o.on_progress) o.on_progress(stage, done, stages);
+  };
   Diagnosis dg;
   dg.fit_rows = holdoutRows(data, o.holdout, o.holdout_shift, false);
   dg.holdout_rows = holdoutRows(data, o.holdout, o.holdout_shift, true);
@@ -577,7 +581,9 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
   const double n = static_cast<double>(fit.entries.size());
   const Evaluation r0{entryValues(fit.entries, dg.nominal_residuals),
                       entryValues(held.entries, dg.nominal_residuals)};
+  progress("nominal residuals (" + std::to_string(data.size()) + " samples)", 1);
   const Linearisation lin = linearise(ctx, candidateEffects(o, data), r0);
+  progress("screening: " + std::to_string(lin.candidates.size()) + " candidates linearised", 2);
   std::array<double, kNumChannels> sigma = channelSigma(fit, dg.nominal_residuals);
   std::vector<int> accepted, confounded;
   Fit base{{}, r0, {}};
@@ -660,8 +666,10 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
     const CandidateResult& br = best->result;
     if (!(br.p_value < o.significance &&
           br.holdout_rms < std::sqrt(hb2.squaredNorm() / hb2.size()) &&
-          bestChannelGain(held.entries, base.r.held, best->fit.r.held) >= o.min_channel_gain))
+          bestChannelGain(held.entries, base.r.held, best->fit.r.held) >= o.min_channel_gain)) {
+      progress("round " + std::to_string(accepted.size() + 1) + ": no further cause", stages - 1);
       break;
+    }
     cause.effect = br.effect;
     cause.stderr_ = br.stderr_;
     cause.p_value = br.p_value;
@@ -675,6 +683,8 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
     // Converge the accepted model, so that the next round credits a candidate only with what
     // it adds, not with a better fit of the effects already accepted.
     base = gaussNewton(ctx, best->fit, sigma, 3);
+    progress("round " + std::to_string(dg.causes.size()) + ": " + effectLabel(br.effect),
+             2 + static_cast<int>(dg.causes.size()));
   }
   for (std::size_t i = 0; i < dg.causes.size(); ++i) dg.causes[i].effect.value = base.effects[i].value;
   dg.extended_robot = withEffects(robot, base.effects);
@@ -712,6 +722,10 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
       dg.extended_robot = st.robot;
     }
   }
+  progress(inertial_allowed ? "inertial stage: " +
+                                  std::string(dg.inertial.accepted ? "accepted" : "not accepted")
+                            : "inertial stage: not a candidate",
+           stages);
   dg.extended_residuals = residuals(prepared, dg.extended_robot, mo, all);
   dg.nominal_all = channelReport(prepared, fit.entries, held.entries, dg.nominal_residuals, all, robot, mo);
   dg.nominal = channelReport(prepared, {}, held.entries, dg.nominal_residuals, dg.holdout_rows, robot, mo);

@@ -51,6 +51,11 @@ TEST_CASE("gaitopt synth + diagnose end to end", "[ident][cli]") {
   const test::CliRun d = test::runCli("diagnose --robot " + kRobot + " --data " + test::quoted(data) +
                                       " --out " + test::quoted(out));
   REQUIRE(d.exit_code == 0);
+  // Progress: k of n stages with the elapsed time, the first cause named in its round.
+  CHECK_THAT(d.out, Contains("diagnose [1/6] nominal residuals (") &&
+                        Contains("diagnose [2/6] screening: ") &&
+                        Contains("diagnose [3/6] round 1: torque_offset@knee_left  elapsed ") &&
+                        Contains("diagnose [6/6] inertial stage: "));
   const std::string report = test::readFile(out + "/report.md");
   CHECK_THAT(report, Contains("The model overestimates the left-knee torque") &&
                          Contains("a torque-sensor offset of -") &&
@@ -67,8 +72,10 @@ TEST_CASE("gaitopt synth + diagnose end to end", "[ident][cli]") {
   const std::string shuffled = scratch().fresh("shuffled") + ".csv";
   std::ofstream(shuffled) << reversedColumns(test::readFile(data));
   const std::string out2 = scratch().fresh("out");
-  REQUIRE(test::runCli("diagnose --robot " + kRobot + " --data " + test::quoted(shuffled) +
-                       " --out " + test::quoted(out2)).exit_code == 0);
+  const test::CliRun quiet = test::runCli("diagnose --quiet --robot " + kRobot + " --data " +
+                                          test::quoted(shuffled) + " --out " + test::quoted(out2));
+  REQUIRE(quiet.exit_code == 0);
+  CHECK(quiet.out.find("diagnose [") == std::string::npos);
   CHECK(test::readFile(out2 + "/diagnosis.json") == json);
 }
 

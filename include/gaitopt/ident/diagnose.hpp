@@ -28,6 +28,7 @@
 // named effects it makes insignificant and refits the rest.
 // Gain: effect_channels_pct, on the channels the causes act on (those carrying 90 % of the
 // noise-normalised change in the held-out predictions); overall_pct over every channel.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,10 @@ struct DiagnoseOptions {
   int max_causes = 3;
   double edge_trim = 0.03;         // [s]
   PreprocessOptions preprocess;
+  // Called after each stage with its description and `done` of `total` stages (the nominal
+  // residuals, the screening, one per selection round, the inertial stage); a round that
+  // finds no further cause jumps `done` to the last stage. Empty: no progress.
+  std::function<void(const std::string& stage, int done, int total)> on_progress;
 };
 
 struct ChannelReport {
