@@ -17,7 +17,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from _common import out_as_positional  # noqa: E402
+from _common import fail, out_as_positional  # noqa: E402
 
 
 def centred(values, weights):
@@ -30,9 +30,15 @@ def main():
         sys.exit(__doc__)
     report_path = argv[1]
     out = argv[2] if len(argv) == 3 else report_path.rsplit(".", 1)[0] + ".png"
-    with open(report_path) as f:
-        report = json.load(f)
-    rocker = report["rocker_foot"]
+    try:
+        with open(report_path) as f:
+            report = json.load(f)
+        rocker = report["rocker_foot"]
+    except (OSError, ValueError) as e:
+        fail("opensim_rocker", f"cannot read {report_path}: {e}")
+    except (KeyError, TypeError):
+        fail("opensim_rocker", f"{report_path}: no 'rocker_foot' member: not the --report JSON of "
+                               "gaitopt import-opensim")
     fig, (ax_a, ax_t) = plt.subplots(1, 2, figsize=(11, 4.5))
     colours = {"right": "tab:red", "left": "tab:blue"}
     span = np.array([-0.45, 0.45])
