@@ -61,7 +61,7 @@ SmoothingSpline fitSpline(const Eigen::VectorXd& t, const Eigen::MatrixXd& y, do
   return SmoothingSpline(t, y, smoothingLambdaForCutoff(meanInterval(t), cutoff_hz));
 }
 
-SmoothedSignal sampled(const SmoothingSpline& s, const Eigen::VectorXd& t, int channel) {
+SmoothedTrajectory sampled(const SmoothingSpline& s, const Eigen::VectorXd& t, int channel) {
   return {s.evaluate(t, 0).col(channel), s.evaluate(t, 1).col(channel), s.evaluate(t, 2).col(channel)};
 }
 
@@ -212,9 +212,9 @@ void thesisCoordinates(ImportedTrial& trial) {
           pick(a.thigh) - offset - pick(trial.trunk), pick(b.thigh) - pick(a.thigh),
           pick(b.thigh) - pick(b.shank) - offset;
     };
-    fill(trial.q, [k](const SmoothedSignal& s) { return s.v(k); }, kPi);
-    fill(trial.qd, [k](const SmoothedSignal& s) { return s.d(k); }, 0.0);
-    fill(trial.qdd, [k](const SmoothedSignal& s) { return s.dd(k); }, 0.0);
+    fill(trial.q, [k](const SmoothedTrajectory& s) { return s.v(k); }, kPi);
+    fill(trial.qd, [k](const SmoothedTrajectory& s) { return s.d(k); }, 0.0);
+    fill(trial.qdd, [k](const SmoothedTrajectory& s) { return s.dd(k); }, 0.0);
     trial.reactions.row(k) << a.force.row(k), b.force.row(k);
   }
 }

@@ -44,7 +44,6 @@ const std::array<const char*, 3> kBackends = {"nlopt_slsqp", "ipopt", "nlopt_cob
 const std::array<const char*, 2> kHierarchies = {"staged", "direct"};
 const std::array<const char*, 2> kGradientModes = {"exact", "finite_difference"};
 const std::array<const char*, 4> kHessians = {"limited_memory", "bfgs", "exact", "exact_unmodified"};
-const std::array<const char*, 1> kParameterisations = {"miossec"};
 
 bool isPlainFileName(const std::string& name) {
   return !name.empty() && name != "." && name != ".." && name.size() <= 255 &&

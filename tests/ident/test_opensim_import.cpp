@@ -296,7 +296,7 @@ TEST_CASE("analysis: static one-leg stance gives the hand-computed distal joint 
   const int n = 3;
   t.t = Eigen::VectorXd::LinSpaced(n, 0.0, 0.02);
   const auto constant = [n](double v) {
-    return SmoothedSignal{Eigen::VectorXd::Constant(n, v), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
+    return SmoothedTrajectory{Eigen::VectorXd::Constant(n, v), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
   };
   for (int s = 0; s < 2; ++s) {
     ImportedLeg& leg = t.legs[s];

@@ -142,8 +142,7 @@ const RobotParams& human() {
 }
 
 // The shipped OpenSim trial imported by `gaitopt import-opensim` (the measured-data CSV) and
-// read back. (ident/opensim_import.hpp cannot share a translation unit with diagnose.hpp: both
-// declare a SmoothedSignal.)
+// read back.
 const MeasuredData& subject01() {
   static test::ScratchDir dir("rocker_subject01");
   static const MeasuredData d = [] {

@@ -49,7 +49,7 @@ struct OpenSimImportOptions {
 };
 
 // A smoothed signal at the output times: value, first and second time derivative.
-struct SmoothedSignal {
+struct SmoothedTrajectory {
   Eigen::VectorXd v, d, dd;
 };
 
@@ -60,7 +60,7 @@ struct GaitEvent {
 };
 
 struct ImportedLeg {
-  SmoothedSignal thigh, shank;  // absolute angles, counter-clockwise from the downward vertical
+  SmoothedTrajectory thigh, shank;  // absolute angles, counter-clockwise from the downward vertical
   Eigen::MatrixX2d force;       // ground reaction on the foot (x forward, z up) [N]
   Eigen::MatrixX2d cop;         // centre of pressure, belt removed [m]
   std::vector<bool> contact;
@@ -69,8 +69,8 @@ struct ImportedLeg {
 struct ImportedTrial {
   Eigen::VectorXd t;              // output times = force-plate times inside the IK record
   ImportedLeg legs[2];            // indexed by BodySide
-  SmoothedSignal trunk;           // trunk line angle, counter-clockwise from the upward vertical
-  SmoothedSignal hip_x, hip_z;    // hip joint centre, belt removed [m]
+  SmoothedTrajectory trunk;           // trunk line angle, counter-clockwise from the upward vertical
+  SmoothedTrajectory hip_x, hip_z;    // hip joint centre, belt removed [m]
   double ground_z = 0.0;          // mean COP height (the plate surface) [m]
   std::vector<bool> double_support;
   std::vector<BodySide> leg1;     // physical leg that is leg 1 at each sample
