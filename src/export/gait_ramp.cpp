@@ -20,7 +20,8 @@ using StepPtr = std::shared_ptr<const GaitEvaluation<double>>;
 double allowedMaximum(const std::vector<ConstraintMaximum>& baseline, const std::string& name) {
   const auto b = std::find_if(baseline.begin(), baseline.end(),
                               [&](const auto& x) { return x.name == name; });
-  return std::max(0.0, b == baseline.end() ? 0.0 : b->value) + kRampTolerance;
+  return std::max(0.0, b == baseline.end() ? 0.0 : b->value) * (1.0 + kRampRelativeTolerance) +
+         kRampTolerance;
 }
 
 // The step's DS with α from alpha0 at rate v0 to alpha1 at rate v1 along the DS polynomials
@@ -65,7 +66,7 @@ struct RestDsDesign {
   double slope2 = 1.0;      // dδ2/dα at rest (1 + slope1: the trunk keeps its angle)
   double duration = 1.0;    // T / (2 Δα / v): 1 is constant α̈, less shifts it to the start
 };
-constexpr int kMaxSearchEvaluations = 1500;
+constexpr int kMaxSearchEvaluations = 3000;
 
 // `start`: rest → junction at the end of the DS (α_fDS, rate v); otherwise junction at the DS
 // start (α_iDS, rate v) → rest.
@@ -86,7 +87,22 @@ StepPtr restDs(const GaitEvaluation<double>& e, bool start, double v, const Rest
   return out;
 }
 
-constexpr double kSearchRate = 500.0;  // Hz, the samples the rest DS search holds
+constexpr double kSearchRate = 500.0;  // Hz, the samples the searches hold
+
+// The maxima over a walk fragment's samples at `rate` and at the exact start and end of its
+// last DS: touchdown and lift-off (or rest) are often the worst samples and fall between the
+// regular ones.
+std::vector<ConstraintMaximum> maximaWithEnd(const GaitEvaluator& ev,
+                                             const std::vector<WalkStepMotion>& walk, double rate) {
+  std::vector<PlannedSample> samples = sampleWalk(ev, walk, rate);
+  const GaitEvaluation<double>& last = *walk.back().evaluation;
+  for (double t : {0.0, last.motion.T_DS}) {
+    PlannedSample end = samples.back();
+    end.row = sampleTrajectoryAt(ev, last, Phase::DoubleSupport, t);
+    samples.push_back(end);
+  }
+  return sampleConstraintMaxima(ev, walk, samples);
+}
 // Margin kept in the search, as a fraction of each constraint's scale, so that the samples
 // at the export rate (between the search's) hold too.
 constexpr double kSearchMargin = 0.02;
@@ -122,7 +138,7 @@ struct Design {
 double designMerit(const GaitEvaluator& ev, const std::vector<ConstraintMaximum>& baseline,
                    const std::vector<WalkStepMotion>& walk) {
   if (walk.empty()) return 1e6;
-  return merit(sampleConstraintMaxima(ev, walk, sampleWalk(ev, walk, kSearchRate)), baseline);
+  return merit(maximaWithEnd(ev, walk, kSearchRate), baseline);
 }
 
 // The design whose samples hold, by a derivative-free search (the per-sample maxima are not
@@ -151,8 +167,7 @@ std::vector<WalkStepMotion> searchDesign(const GaitEvaluator& ev,
   }
   const std::vector<WalkStepMotion> walk = d.make(x);
   if (walk.empty()) throw InfeasibleRamp("no " + what + " is defined (its step falls back)");
-  const auto bad = violations(sampleConstraintMaxima(ev, walk, sampleWalk(ev, walk, kSearchRate)),
-                              baseline);
+  const auto bad = violations(maximaWithEnd(ev, walk, kSearchRate), baseline);
   if (bad.empty()) return walk;
   const auto worst = std::max_element(bad.begin(), bad.end(), [](const auto& a, const auto& b) {
     return a.value / unitScale(a.unit) < b.value / unitScale(b.unit);
@@ -189,8 +204,7 @@ WalkStepMotion transitionDs(const GaitEvaluator& ev, const std::vector<Constrain
   for (int i = 0; i < kDurationScan && best > 0.0; ++i) {
     const double factor = kDurationMin + (kDurationMax - kDurationMin) * i / (kDurationScan - 1);
     const std::vector<WalkStepMotion> one{{withDsMotion(e, a0, v0, a1, v1, factor), true}};
-    const double m = merit(sampleConstraintMaxima(ev, one, sampleWalk(ev, one, kSearchRate)),
-                           baseline);
+    const double m = merit(maximaWithEnd(ev, one, kSearchRate), baseline);
     if (m < best) std::tie(best, chosen) = std::make_pair(m, one.front());
   }
   return chosen;
@@ -276,8 +290,7 @@ WalkStepMotion rampOutStep(const GaitEvaluator& ev, const std::vector<Constraint
 
 std::vector<ConstraintMaximum> gaitBaseline(const GaitEvaluator& ev,
                                             const std::shared_ptr<const GaitEvaluation<double>>& gait) {
-  const std::vector<WalkStepMotion> one{{gait, true}};
-  return sampleConstraintMaxima(ev, one, sampleWalk(ev, one, kBaselineRate));
+  return maximaWithEnd(ev, {{gait, true}}, kBaselineRate);
 }
 
 std::vector<ConstraintMaximum> violations(const std::vector<ConstraintMaximum>& maxima,
