@@ -7,6 +7,7 @@
 #include <limits>
 #include <tuple>
 #include <nlopt.hpp>
+#include <optional>
 
 #include "gaitopt/gait/evaluator_impl.hpp"
 #include "gaitopt/io/json_writer.hpp"
@@ -88,6 +89,7 @@ StepPtr restDs(const GaitEvaluation<double>& e, bool start, double v, const Rest
 }
 
 constexpr double kSearchRate = 500.0;  // Hz, the samples the searches hold
+constexpr double kConfirmRate = 2000.0;  // Hz, the samples a design found is confirmed at
 
 // The maxima over a walk fragment's samples at `rate` and at the exact start and end of its
 // last DS: touchdown and lift-off (or rest) are often the worst samples and fall between the
@@ -135,21 +137,29 @@ struct Design {
   std::function<std::vector<WalkStepMotion>(const std::vector<double>&)> make;
 };
 
-double designMerit(const GaitEvaluator& ev, const std::vector<ConstraintMaximum>& baseline,
-                   const std::vector<WalkStepMotion>& walk) {
-  if (walk.empty()) return 1e6;
-  return merit(maximaWithEnd(ev, walk, kSearchRate), baseline);
-}
-
 // The design whose samples hold, by a derivative-free search (the per-sample maxima are not
 // smooth in the design: the worst sample moves) from x0; InfeasibleRamp naming the constraint
 // that stays violated otherwise.
 std::vector<WalkStepMotion> searchDesign(const GaitEvaluator& ev,
                                          const std::vector<ConstraintMaximum>& baseline,
                                          const Design& d, const std::string& what) {
-  using Objective = std::function<double(const std::vector<double>&)>;
-  Objective f = [&](const std::vector<double>& x) { return designMerit(ev, baseline, d.make(x)); };
   nlopt::opt opt(nlopt::LN_SBPLX, static_cast<unsigned>(d.x0.size()));
+  // The search stops at the first design whose samples hold without the margin at
+  // kSearchRate and at kConfirmRate (the margin keeps the merit positive where the gait
+  // itself is at a bound).
+  std::optional<std::vector<double>> found;
+  using Objective = std::function<double(const std::vector<double>&)>;
+  Objective f = [&](const std::vector<double>& x) {
+    const std::vector<WalkStepMotion> walk = d.make(x);
+    if (walk.empty()) return 1e6;
+    const std::vector<ConstraintMaximum> maxima = maximaWithEnd(ev, walk, kSearchRate);
+    if (violations(maxima, baseline).empty() &&
+        violations(maximaWithEnd(ev, walk, kConfirmRate), baseline).empty()) {
+      found = x;
+      opt.force_stop();
+    }
+    return merit(maxima, baseline);
+  };
   opt.set_lower_bounds(d.lower);
   opt.set_upper_bounds(d.upper);
   opt.set_min_objective(
@@ -157,14 +167,14 @@ std::vector<WalkStepMotion> searchDesign(const GaitEvaluator& ev,
         return (*static_cast<Objective*>(data))(std::vector<double>(x, x + n));
       },
       &f);
-  opt.set_stopval(0.0);
   opt.set_maxeval(kMaxSearchEvaluations);
   std::vector<double> x = d.x0;
   double value = 0.0;
   try {
     opt.optimize(x, value);
-  } catch (const std::exception&) {  // nlopt's roundoff-limited: x holds the best point
+  } catch (const std::exception&) {  // forced stop or roundoff-limited: x holds the best point
   }
+  if (found) x = *found;
   const std::vector<WalkStepMotion> walk = d.make(x);
   if (walk.empty()) throw InfeasibleRamp("no " + what + " is defined (its step falls back)");
   const auto bad = violations(maximaWithEnd(ev, walk, kSearchRate), baseline);
