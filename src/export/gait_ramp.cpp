@@ -184,7 +184,8 @@ std::vector<WalkStepMotion> searchDesign(const GaitEvaluator& ev,
   });
   throw InfeasibleRamp("no " + what + " holds the constraints: " + worst->name +
                        " still violated by " + formatDouble(worst->value) + " " + worst->unit +
-                       " (best of " + std::to_string(kMaxSearchEvaluations) + " designs)");
+                       " (the best design of a search of up to " +
+                       std::to_string(kMaxSearchEvaluations) + ")");
 }
 
 // The rest DS variables (RestDsDesign) with their bounds, appended to `d`.
