@@ -5,9 +5,9 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <tuple>
 #include <nlopt.hpp>
 #include <optional>
+#include <tuple>
 
 #include "gaitopt/gait/evaluator_impl.hpp"
 #include "gaitopt/io/json_writer.hpp"
@@ -233,7 +233,8 @@ RestDsDesign restGuess(const GaitEvaluation<double>& e, bool start) {
 }
 
 // The standing start: a DS from rest to the first SS start (rate a) on a path of its own.
-WalkStepMotion standingStart(const GaitEvaluator& ev, const std::vector<ConstraintMaximum>& baseline,
+WalkStepMotion standingStart(const GaitEvaluator& ev,
+                             const std::vector<ConstraintMaximum>& baseline,
                              const GaitEvaluation<double>& first, double a) {
   Design d;
   appendRestDs(d, restGuess(first, true));
@@ -244,33 +245,33 @@ WalkStepMotion standingStart(const GaitEvaluator& ev, const std::vector<Constrai
                                            " rad/s").front();
 }
 
-// The gait parameters a stopping step redesigns: its SS keeps its start (continuous with the
+// The gait parameters a ramp-out step redesigns: its SS keeps its start (continuous with the
 // previous DS) and changes its path and touchdown, so that the robot lands with the CoM far
-// enough behind the front foot and slow enough to be stopped within the friction cone and
-// with both feet loaded (the gait's own touchdown is too fast to stop before the CoM passes
-// the front foot).
-constexpr std::array<int, 9> kStoppingStepFree{kAlphaIDS,  kDelta1IDS, kTheta3IDS,
+// enough behind the front foot and slow enough to be slowed or stopped within the friction
+// cone and with both feet loaded (the gait's own touchdown is too fast to stop before the CoM
+// passes the front foot).
+constexpr std::array<int, 9> kRampOutStepFree{kAlphaIDS,  kDelta1IDS, kTheta3IDS,
                                                kDelta1Int, kTheta3Int, kX2rInt,
                                                kZ2Int,     kDelta1sFSS, kDelta2sFSS};
-double stoppingHalfWidth(int i) {
+double rampOutHalfWidth(int i) {
   if (i == kX2rInt || i == kZ2Int) return 0.05;          // m
   if (i == kDelta1sFSS || i == kDelta2sFSS) return 1.0;  // rad/rad
   return 0.15;                                           // rad
 }
 
-// A ramp-out step: its SS from rate `a` on a path of its own (kStoppingStepFree), then the DS
+// A ramp-out step: its SS from rate `a` on a path of its own (kRampOutStepFree), then the DS
 // to the next step's start rate `next` along its own DS polynomials (duration factor free,
 // withDsMotion), or, when next = 0, a DS to rest on a path of its own.
 WalkStepMotion rampOutStep(const GaitEvaluator& ev, const std::vector<ConstraintMaximum>& baseline,
                            const GaitParameters& p, const GaitEvaluation<double>& ss, double next) {
   const double a = ss.motion.alphadot_iSS;
   Design d;
-  for (int i : kStoppingStepFree) {
+  for (int i : kRampOutStepFree) {
     d.x0.push_back(p(i));
-    d.lower.push_back(p(i) - stoppingHalfWidth(i));
-    d.upper.push_back(p(i) + stoppingHalfWidth(i));
+    d.lower.push_back(p(i) - rampOutHalfWidth(i));
+    d.upper.push_back(p(i) + rampOutHalfWidth(i));
   }
-  const std::size_t n = kStoppingStepFree.size();
+  const std::size_t n = kRampOutStepFree.size();
   if (next == 0.0) {
     appendRestDs(d, restGuess(ss, false));
   } else {
@@ -280,7 +281,7 @@ WalkStepMotion rampOutStep(const GaitEvaluator& ev, const std::vector<Constraint
   }
   d.make = [&](const std::vector<double>& x) {
     GaitParameters q = p;
-    for (std::size_t k = 0; k < n; ++k) q(kStoppingStepFree[k]) = x[k];
+    for (std::size_t k = 0; k < n; ++k) q(kRampOutStepFree[k]) = x[k];
     q(kAlphadotISS) = a;
     const GaitEvaluation<double> e = ev.evaluate(q);
     std::vector<WalkStepMotion> out;
@@ -292,7 +293,8 @@ WalkStepMotion rampOutStep(const GaitEvaluator& ev, const std::vector<Constraint
                    true});
     return out;
   };
-  const std::string what = next == 0.0 ? "stop to rest" : "slowing to alphad_iSS = " + formatDouble(next) + " rad/s";
+  const std::string what =
+      next == 0.0 ? "stop to rest" : "slowing to alphad_iSS = " + formatDouble(next) + " rad/s";
   return searchDesign(ev, baseline, d, what + " after an SS started at alphad_iSS = " +
                                            formatDouble(a) + " rad/s").front();
 }
@@ -348,7 +350,8 @@ std::vector<WalkStepMotion> rampedWalk(const GaitEvaluator& ev, const GaitParame
   };
   const StepPtr cyclic_step = ss_step(a_star);
   const std::vector<ConstraintMaximum> baseline = gaitBaseline(ev, cyclic_step);
-  std::vector<WalkStepMotion> walk{standingStart(ev, baseline, *ss_step(rates.front()), rates.front())};
+  std::vector<WalkStepMotion> walk{
+      standingStart(ev, baseline, *ss_step(rates.front()), rates.front())};
   for (std::size_t k = 0; k < rates.size(); ++k) {
     const double next = k + 1 < rates.size() ? rates[k + 1] : r.stop ? 0.0 : a_star;
     if (rates[k] == a_star && next == a_star) {  // the cycle itself, with the gait's own DS

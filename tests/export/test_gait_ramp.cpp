@@ -173,8 +173,9 @@ TEST_CASE("gaitopt export --ramp: the default gait exits 0, a gait that cannot s
           "[export][ramp]") {
   ScratchDir dir("ramp");
   const std::string out = dir.fresh("walk") + ".csv";
-  CliRun run = runCli("export --gait " + quoted(sourcePath("configs/gait/default_step.yaml")) +
-                      " --steps 4 --rate 1000 --ramp --out " + quoted(out));
+  const std::string gait = sourcePath("configs/gait/default_step.yaml");
+  CliRun run = runCli("export --gait " + quoted(gait) + " --steps 4 --rate 1000 --ramp --out " +
+                      quoted(out));
   INFO(run.err);
   REQUIRE(run.exit_code == 0);
   const ExportCsvFile back = readExportCsv(out);
@@ -190,8 +191,8 @@ TEST_CASE("gaitopt export --ramp: the default gait exits 0, a gait that cannot s
   CHECK_THAT(run.err, Catch::Matchers::Contains("no start from rest"));
   CHECK_THAT(run.err, Catch::Matchers::Contains("normal_force_ds still violated"));
   CHECK_FALSE(std::filesystem::exists(chesse));
-  const CliRun bad = runCli("export --gait " + quoted(sourcePath("configs/gait/default_step.yaml")) +
-                            " --ramp --ramp-steps 1 --out " + quoted(out));
+  const CliRun bad =
+      runCli("export --gait " + quoted(gait) + " --ramp --ramp-steps 1 --out " + quoted(out));
   CHECK(bad.exit_code == 2);
   CHECK_THAT(bad.err, Catch::Matchers::Contains("--ramp-steps"));
 }
