@@ -10,31 +10,12 @@
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/model/joint_friction.hpp"
 #include "test_default_gait.hpp"
+#include "test_export_rows.hpp"
 #include "test_files.hpp"
 #include "test_support.hpp"
 
 namespace gaitopt::test {
 namespace {
-
-void requireRowsEqual(const ExportRow& a, const ExportRow& b, double tol) {
-  CHECK(a.step == b.step);
-  CHECK(a.phase == b.phase);
-  CHECK(a.stance == b.stance);
-  CHECK(a.t == Approx(b.t).margin(tol));
-  CHECK(a.alpha == Approx(b.alpha).margin(tol));
-  CHECK(a.alphad == Approx(b.alphad).margin(tol));
-  CHECK(a.alphadd == Approx(b.alphadd).margin(tol));
-  CHECK((a.hip - b.hip).norm() <= tol);
-  CHECK(a.trunk_angle == Approx(b.trunk_angle).margin(tol));
-  for (const auto& [x, y] : {std::pair{a.phi, b.phi}, {a.phid, b.phid}, {a.phidd, b.phidd},
-                             {a.motor, b.motor}, {a.tau, b.tau}, {a.tau_inertial, b.tau_inertial},
-                             {a.tau_gravity, b.tau_gravity}, {a.tau_contact, b.tau_contact},
-                             {a.tau_friction, b.tau_friction}})
-    CHECK((x - y).lpNorm<Eigen::Infinity>() <= tol);
-  for (const auto& [x, y] : {std::pair{a.foot_left, b.foot_left}, {a.foot_right, b.foot_right},
-                             {a.R_left, b.R_left}, {a.R_right, b.R_right}})
-    CHECK((x - y).lpNorm<Eigen::Infinity>() <= tol);
-}
 
 double polynomialAt(const YAML::Node& coefficients, double s) {
   double v = 0.0;
