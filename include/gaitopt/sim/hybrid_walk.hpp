@@ -19,9 +19,12 @@ struct WalkRequest {
   double sample_rate = 200.0;                // trajectory rows [Hz] (events are always recorded)
   double friction_coefficient = 0.8;         // of the controller's cones (gait option)
   double plant_friction_coefficient = -1.0;  // plant ground μ for slip; < 0: friction_coefficient
+  double min_normal_force = 0.0;             // R_min [N] of the projection (gait option)
+  double ground_slope = 0.0;                 // plant ground [rad], + uphill (ClosedLoopOptions)
   bool torque_limits = true;                 // project the inputs on the limits (4.57), (4.60)
   bool full_torque_envelope = true;          // (3.47) with its sloped parts (gait option)
-  bool touchdown_by_foot_height = false;     // impact landings: touchdown at foot-2 height 0
+  bool touchdown_by_foot_height = false;     // touchdown at foot-2 height 0 (else α = α_fSS)
+  bool hold_references_past_fss = false;     // ClosedLoopOptions::hold_references_past_fss
   DsAlphaControl ds_control = DsAlphaControl::Cubic;
   bool use_initial_state = false;  // start from (q_init, qd_init) instead of the gait's SS start
   Vec5 q_init = Vec5::Zero(), qd_init = Vec5::Zero();
@@ -47,7 +50,7 @@ struct WalkStep {
   double t_start, t_touchdown = 0.0, t_liftoff = 0.0;
   double alphad_start;                    // α̇ at SS start
   double max_output_error = 0.0;          // max |y| over SS [rad]
-  double touchdown_event_residual = 0.0;  // |α − α_fSS| / |α̇| at the event [s]
+  double touchdown_event_residual = 0.0;  // |g| / |ġ| of the touchdown event there [s]
   double touchdown_foot_speed = 0.0;
   double energy_start, energy_touchdown = 0.0;  // pinned mechanical energy [J]
   double motor_work = 0.0, friction_loss = 0.0;  // over the SS: ∫ωᵀΓ* dt, ∫ωᵀ(Γ* − Γ) dt
@@ -72,8 +75,8 @@ struct WalkResult {
 };
 
 // The request's gait-dependent fields from the gait options: the controller's cones and the
-// plant's ground (friction_coefficient), the torque envelope, touchdown by foot height for an
-// impact landing.
+// plant's ground (friction_coefficient), the torque envelope, touchdown by foot height, with
+// the references held past α_fSS for a zero-velocity landing.
 void configureForGait(const GaitOptions& options, WalkRequest& request);
 
 // The closed loop's options of a request (sim/closed_loop.hpp).
