@@ -67,13 +67,17 @@ void writeMargins(JsonWriter& w, const GaitFile& gait, const GaitEvaluation<doub
                   const Model& model, const WalkRequest& req) {
   const MarginRequest mr;
   // A perturbed step lands with non-zero velocity, located by foot height: the touchdown map of
-  // simulate (a DS gait's plastic impact with both feet held, else the algebraic rigid impact).
+  // simulate (a DS gait's plastic impact with both feet held, else the algebraic rigid impact),
+  // except that an impact lifting the rear foot starts the next SS at once (DS skipped).
   const std::string impact = resolvedImpactModel(gait.options, "auto");
-  const TouchdownMap td = gaitTouchdown(gait.options, impact, gait.options.friction_coefficient);
+  const double mu = gait.options.friction_coefficient;
+  const TouchdownMap td = impact == "double_support" ? doubleSupportTouchdown(mu, true)
+                                                     : gaitTouchdown(gait.options, impact, mu);
   w.key("margins").beginObject();
   w.key("recovery_steps").value(mr.steps);
   w.key("tolerance").value(mr.tolerance);
-  w.key("touchdown").value("foot height, impact model " + impact);
+  w.key("touchdown").value("foot height, impact model " + impact +
+                           ", SS at once when the impact lifts the rear foot");
   writeMargin(w, "push_forward", largestPush(e, model, req, 1, mr, td), "m/s");
   writeMargin(w, "push_backward", largestPush(e, model, req, -1, mr, td), "m/s");
   writeMargin(w, "trunk_payload",

@@ -56,10 +56,12 @@ TouchdownMap impactTouchdown(ImpactModelKind kind, const ImpactOptions& options,
   };
 }
 
-TouchdownMap doubleSupportTouchdown(double mu, double impact_duration, double speed_tol) {
+TouchdownMap doubleSupportTouchdown(double mu, bool rear_lift_starts_ss, double impact_duration,
+                                    double speed_tol) {
   ImpactOptions io;
   io.mu = mu;
-  const TouchdownMap rigid = impactTouchdown(ImpactModelKind::Algebraic, io, true, speed_tol);
+  const TouchdownMap rigid =
+      impactTouchdown(ImpactModelKind::Algebraic, io, !rear_lift_starts_ss, speed_tol);
   return [=](const Model& plant, const Vec5& q, const Vec5& qd) {
     const PinnedTerms<double> t = pinnedTerms(plant, q, qd);
     // Foot 1 stays pinned; foot 2 stops: A Δq̇ = D2ᵀ I2 with D2 q̇⁺ = 0.
@@ -98,7 +100,7 @@ std::string resolvedImpactModel(const GaitOptions& o, const std::string& model) 
 TouchdownMap gaitTouchdown(const GaitOptions& o, const std::string& model, double ground_mu) {
   const std::string m = resolvedImpactModel(o, model);
   if (m == "none") return impulseFreeTouchdown(1e-6, o.parameterisation.hasDoubleSupport());
-  if (m == "double_support") return doubleSupportTouchdown(ground_mu);
+  if (m == "double_support") return doubleSupportTouchdown(ground_mu, false);
   if (m != "algebraic" && m != "differential")
     throw std::invalid_argument("unknown impact model '" + model + "'");
   ImpactOptions io;

@@ -29,10 +29,12 @@ TouchdownMap impactTouchdown(ImpactModelKind kind, const ImpactOptions& options,
 // an impact of finite duration `impact_duration` [s] it absorbs a pull down to −M g ·
 // impact_duration (a rigid impact neglects that finite force); a larger pull, or a foot
 // impulse outside its cone (μ `mu`), leaves it to the algebraic rigid impact with friction
-// (RearFootLift, Slipped). Below `speed_tol` [m/s] of arriving foot speed the held impact is
-// always used (its impulses are then round-off).
-TouchdownMap doubleSupportTouchdown(double mu, double impact_duration = 5e-3,
-                                    double speed_tol = 1e-6);
+// (Slipped; RearFootLift, or with `rear_lift_starts_ss` the next SS at once, the DS skipped).
+// Below `speed_tol` [m/s] of arriving foot speed the held impact is always used (its impulses
+// are then round-off). 5 ms: a rubber-padded foot's contact time, π√(m/k) for a few kg on
+// 10⁵ N/m, is 10–20 ms; 5 ms is the conservative end (an assumption, not a measurement).
+TouchdownMap doubleSupportTouchdown(double mu, bool rear_lift_starts_ss,
+                                    double impact_duration = 5e-3, double speed_tol = 1e-6);
 
 // The touchdown map of a gait: `model` auto (double_support for a zero-velocity landing of a
 // gait with DS, none for one without, algebraic for an impact landing), none (impulse-free
