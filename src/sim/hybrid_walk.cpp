@@ -116,10 +116,14 @@ void Walker::startStep(double t, Eigen::VectorXd& y, int k) {
 }
 
 // The step ends at the next SS start (after lift-off, or at once after an impact that lifts
-// foot 1): its energy there, in the new stance labelling, and the step's work integrals.
+// foot 1): its energy there, in the new stance labelling with the potential still measured
+// from the step's stance foot (the new one is higher by touchdown_rise on a slope), and the
+// step's work integrals.
 void Walker::endStep(const Eigen::VectorXd& y) {
   WalkStep& s = out_.steps.back();
-  s.energy_end = pinnedEnergy(sys_.plant, y.head<5>(), y.segment<5>(5));
+  const Model& p = sys_.plant;
+  s.energy_end = pinnedEnergy(p, y.head<5>(), y.segment<5>(5)) +
+                 p.total_mass * p.gravity * s.touchdown_rise;
   s.step_motor_work = y(10);
   s.step_friction_loss = y(11);
 }
@@ -149,6 +153,7 @@ bool Walker::singleSupport(double& t, Eigen::VectorXd& y, int k) {
   st.touchdown_event_residual =
       std::abs(touchdownEvent(sys_, q)) / std::abs(touchdownEventRate(sys_, q, qd));
   st.touchdown_foot_speed = (pinnedTerms(sys_.plant, q, qd).D2 * qd).norm();
+  st.touchdown_rise = chainPoint(sys_.plant.pinned.foot2, chainState(sys_.plant, q, qd))(1);
   st.energy_touchdown = pinnedEnergy(sys_.plant, q, qd);
   st.motor_work = y(10);
   st.friction_loss = y(11);

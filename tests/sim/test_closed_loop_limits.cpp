@@ -182,8 +182,9 @@ TEST_CASE("Contact projection: a faster start walks with its DS normal force hel
         if (!s.single_support) least = std::min({least, s.R1(1), s.R2(1)});
       CHECK(least >= r_min - 1e-6);
       CHECK(least <= r_min + 1e-3);  // the bound was active
+      // Held at 20 N the DS gives way on α: the cycle's α̇ is restored to 10⁻⁴, not 10⁻⁶.
       CHECK(held.steps[1].alphad_start ==
-            Approx(f.evaluation.motion.alphadot_iSS).margin(1e-6));
+            Approx(f.evaluation.motion.alphadot_iSS).margin(r_min > 0.0 ? 1e-4 : 1e-6));
     }
   }
 }

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "gaitopt/model/dynamics_pinned.hpp"
+#include "gaitopt/model/forward_dynamics.hpp"
 #include "gaitopt/sim/hybrid_walk.hpp"
 #include "gaitopt/sim/impact_touchdown.hpp"
 #include "gaitopt/sim/poincare.hpp"
@@ -69,15 +70,14 @@ TEST_CASE("Zero-velocity gait pushed: the foot lands with an impact, the walk re
       INFO(why);
     }
   }
-  SECTION("the pushed step's touchdown: located by foot height, rigid impact, energy balance") {
-    req.dalphad0 = -0.1;
+  SECTION("a late touchdown (ground falling 0.02 rad): located by foot height, with impact") {
+    req.ground_slope = -0.02;  // the outputs have converged by then: only the ground moves
     const WalkResult r = simulateWalk(f.evaluation, f.model, f.model, req, td);
     INFO(r.message);
     REQUIRE(r.outcome == WalkOutcome::Completed);
     const WalkStep& s = r.steps[0];
     CHECK(s.touchdown_foot_speed > 1e-3);
     CHECK(s.touchdown_event_residual <= 1e-9);
-    CHECK(std::abs(touchdownFoot(f.model, r, 0)(1)) <= 1e-9 * s.touchdown_foot_speed);
     CHECK(s.impact_energy_loss > 0.0);
     CHECK(s.impulse2(1) > 0.0);
     CHECK(std::abs(stepEnergyBalanceError(s)) <= 1e-8);
@@ -87,9 +87,12 @@ TEST_CASE("Zero-velocity gait pushed: the foot lands with an impact, the walk re
 TEST_CASE("Held impact: both feet at rest after it, momentum and energy consistent", "[sim]") {
   const DefaultGait f;
   const GaitMotion<double>& mo = f.evaluation.motion;
-  // The pre-touchdown state with a downward foot velocity: the cycle's plus a rotation about
-  // the stance foot (α̇ only), as the held references give.
-  Vec5 qd = mo.qd_fSS;
+  // The pre-touchdown state with a downward foot velocity: the cycle's, q*(α_fSS) α̇_fSS (foot at
+  // rest), plus a rotation about the stance foot (α̇ only), as the held references give.
+  Vec5 qd;
+  qd(0) = 1.0;
+  for (int j = 0; j < 4; ++j) qd(j + 1) = mo.ss_path[j](mo.alpha_fSS).first;
+  qd *= mo.alphadot_fSS;
   qd(0) -= 0.05;
   const TouchdownResult td = doubleSupportTouchdown(0.8, false)(f.model, mo.q_fSS, qd);
   REQUIRE(td.ok);

@@ -52,6 +52,7 @@ struct WalkStep {
   double max_output_error = 0.0;          // max |y| over SS [rad]
   double touchdown_event_residual = 0.0;  // |g| / |ġ| of the touchdown event there [s]
   double touchdown_foot_speed = 0.0;
+  double touchdown_rise = 0.0;  // world height of the landing foot above the stance foot [m]
   double energy_start, energy_touchdown = 0.0;  // pinned mechanical energy [J]
   double motor_work = 0.0, friction_loss = 0.0;  // over the SS: ∫ωᵀΓ* dt, ∫ωᵀ(Γ* − Γ) dt
   double min_normal_force = 0.0;                 // over SS and DS, from the samples [N]
@@ -60,7 +61,8 @@ struct WalkStep {
   double impact_energy_loss = 0.0;                        // [J]
   Vec2 impulse1 = Vec2::Zero(), impulse2 = Vec2::Zero();  // [N·s]
   bool double_support = true;                             // a DS followed the touchdown
-  // Whole step (SS start → next SS start, legs relabelled): ΔE = W − F − impact loss.
+  // Whole step (SS start → next SS start, legs relabelled): ΔE = W − F − impact loss, E_end
+  // with the potential measured from the step's stance foot.
   double energy_end = 0.0, step_motor_work = 0.0, step_friction_loss = 0.0;
   int saturated_samples = 0;            // samples where the projection acted
   double first_saturation_time = -1.0;  // [s], −1: none
