@@ -27,6 +27,7 @@ struct StabilityArgs {
   std::string gait, out, jacobian = "sensitivity";
   double step = 1e-4, bandwidth = 40.0, range = 0.05;
   int points = 51;
+  int margin_steps = 5;
 };
 
 std::string mapCsv(const ZeroDynamicsStudy& z) {
@@ -64,8 +65,9 @@ void writeMargin(JsonWriter& w, const char* name, const Margin& m, const char* u
 }
 
 void writeMargins(JsonWriter& w, const GaitFile& gait, const GaitEvaluation<double>& e,
-                  const Model& model, const WalkRequest& req) {
-  const MarginRequest mr;
+                  const Model& model, const WalkRequest& req, int steps) {
+  MarginRequest mr;
+  mr.steps = steps;
   // A perturbed step lands with non-zero velocity, located by foot height: the touchdown map of
   // simulate (a DS gait's plastic impact with both feet held, else the algebraic rigid impact),
   // except that an impact lifting the rear foot starts the next SS at once (DS skipped).
@@ -139,6 +141,10 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--map-range", a->range, "Relative alphad range of the 1-D map (+-)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.95));
+  cmd->add_option("--margin-steps", a->margin_steps,
+                  "Steps walked after a push, on a slope or with a payload (margins)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
   cmd->add_option("--map-points", a->points, "Points of the 1-D map")
       ->capture_default_str()
       ->check(CLI::Range(2, 10001));
@@ -206,7 +212,7 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
     w.key("saturated_samples_on_cycle").value(saturatedOnCycle(
         e, model, req, x, gaitTouchdown(gait.options, "auto", gait.options.friction_coefficient)));
     writeZeroDynamics(w, zd, zr.max_steps);
-    writeMargins(w, gait, e, model, req);
+    writeMargins(w, gait, e, model, req, a->margin_steps);
     w.endObject();
     const fs::path dir(a->out);
     fs::create_directories(dir);
