@@ -14,6 +14,7 @@
 #include "gaitopt/sim/impact_touchdown.hpp"
 #include "test_default_gait.hpp"
 #include "test_support.hpp"
+#include "test_walk_request.hpp"
 
 namespace gaitopt::test {
 namespace {
@@ -21,13 +22,6 @@ namespace {
 struct ImpactGait : ShippedGait {
   ImpactGait() : ShippedGait("configs/gait/chevallereau_aoustin_0.75_impact.yaml") {}
 };
-
-WalkRequest gaitRequest(const GaitOptions& o, int steps) {
-  WalkRequest req;
-  req.steps = steps;
-  configureForGait(o, req);
-  return req;
-}
 
 // Largest |Γ*_j| / limit_j(ω_j) over the samples.
 double torqueRatio(const Model& m, const WalkResult& r, bool full) {

@@ -11,16 +11,10 @@
 #include "gaitopt/sim/stability_margins.hpp"
 #include "test_default_gait.hpp"
 #include "test_support.hpp"
+#include "test_walk_request.hpp"
 
 namespace gaitopt::test {
 namespace {
-
-WalkRequest footHeightRequest(const GaitOptions& o, int steps) {
-  WalkRequest req;
-  req.steps = steps;
-  configureForGait(o, req);
-  return req;
-}
 
 // Foot 2 relative to foot 1 at the touchdown of step k (world frame), from the samples.
 Vec2 touchdownFoot(const Model& m, const WalkResult& r, int k) {
@@ -36,7 +30,7 @@ Vec2 touchdownFoot(const Model& m, const WalkResult& r, int k) {
 TEST_CASE("Zero-velocity gait, touchdown by foot height: the nominal cycle is kept", "[sim]") {
   const DefaultGait f;
   const GaitMotion<double>& mo = f.evaluation.motion;
-  const WalkRequest req = footHeightRequest(f.gait.options, lightTests() ? 2 : 3);
+  const WalkRequest req = gaitRequest(f.gait.options, lightTests() ? 2 : 3);
   REQUIRE(req.touchdown_by_foot_height);
   REQUIRE(req.hold_references_past_fss);
   const WalkResult r = simulateWalk(f.evaluation, f.model, f.model, req,
@@ -58,7 +52,7 @@ TEST_CASE("Zero-velocity gait, touchdown by foot height: the nominal cycle is ke
 TEST_CASE("Zero-velocity gait pushed: the foot lands with an impact, the walk recovers",
           "[sim][stability]") {
   const DefaultGait f;
-  WalkRequest req = footHeightRequest(f.gait.options, 2);
+  WalkRequest req = gaitRequest(f.gait.options, 2);
   const TouchdownMap td = doubleSupportTouchdown(0.8, true);
   MarginRequest mr;
   mr.steps = lightTests() ? 3 : 5;
@@ -109,7 +103,7 @@ TEST_CASE("Held impact: both feet at rest after it, momentum and energy consiste
 TEST_CASE("Inclined ground: zero slope is the flat plant, the feet land on the incline",
           "[sim][stability]") {
   const DefaultGait f;
-  WalkRequest req = footHeightRequest(f.gait.options, lightTests() ? 2 : 3);
+  WalkRequest req = gaitRequest(f.gait.options, lightTests() ? 2 : 3);
   const TouchdownMap td = doubleSupportTouchdown(0.8, true);
   const WalkResult flat = simulateWalk(f.evaluation, f.model, f.model, req, td);
   req.ground_slope = -0.0;
