@@ -1,4 +1,5 @@
 // `gaitopt simulate`: closed-loop hybrid walking of a gait in gaitopt's own model.
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -45,11 +46,16 @@ void applyPerturbation(const std::string& text, WalkRequest& req) {
   const std::string kind = text.substr(0, eq);
   if (kind == "alphad") {
     req.dalphad0 += v;
+  } else if (kind == "slope") {
+    if (std::abs(req.ground_slope + v) >= 0.5)
+      throw CLI::ValidationError("--perturb", "slope must be within (-0.5, 0.5) rad, got '" +
+                                                  text + "'");
+    req.ground_slope += v;
   } else if (coordinate.count(kind)) {
     req.dq0(coordinate.at(kind)) += v;
   } else {
     throw CLI::ValidationError("--perturb", "unknown KIND '" + kind +
-                                                "' (alphad, alpha, delta1, delta2, delta3, delta4)");
+                                                "' (alphad, slope, alpha, delta1, delta2, delta3, delta4)");
   }
 }
 
@@ -139,6 +145,7 @@ std::string summaryJson(const WalkResult& r, const SimulateArgs& a, const WalkRe
   w.key("perturbation").beginObject();
   w.key("alphad").value(req.dalphad0);
   w.key("dq").value(req.dq0);
+  w.key("slope").value(req.ground_slope);
   w.endObject();
   w.key("impact_model").value(resolvedImpactModel(options, a.impact));
   w.key("ds_control").value(toString(req.ds_control));
@@ -169,7 +176,8 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, 10000));
   cmd->add_option("--perturb", args->perturb,
                   "KIND=VALUE added at the first SS start: alphad [rad/s] (on the virtual "
-                  "constraints) or alpha, delta1..delta4 [rad]; repeatable");
+                  "constraints) or alpha, delta1..delta4 [rad]; slope [rad]: the ground ahead "
+                  "of the first stance foot inclined, + uphill; repeatable");
   cmd->add_option("--plant", args->plant,
                   "Robot file of the simulated robot (default: the gait's robot)")
       ->check(CLI::ExistingFile);
@@ -180,10 +188,11 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str()
       ->check(CLI::Range(1.0, 1e5));
   cmd->add_option("--impact", args->impact,
-                  "Touchdown model: auto (impulse-free for a zero-velocity landing, else "
-                  "algebraic), none (impulse-free only), algebraic, differential")
+                  "Touchdown model: auto (double_support for a zero-velocity landing with DS, "
+                  "none without DS, algebraic for an impact landing), none (impulse-free only), "
+                  "double_support (plastic impact, both feet held), algebraic, differential")
       ->capture_default_str()
-      ->check(CLI::IsMember({"auto", "none", "algebraic", "differential"}));
+      ->check(CLI::IsMember({"auto", "none", "double_support", "algebraic", "differential"}));
   cmd->add_option("--ds-control", args->ds_control, "DS control of alpha: cubic, time_optimal")
       ->capture_default_str()
       ->check(CLI::IsMember({"cubic", "time_optimal"}));

@@ -27,6 +27,7 @@ struct StabilityArgs {
   std::string gait, out, jacobian = "sensitivity";
   double step = 1e-4, bandwidth = 40.0, range = 0.05;
   int points = 51;
+  int margin_steps = 5;
 };
 
 std::string mapCsv(const ZeroDynamicsStudy& z) {
@@ -64,22 +65,29 @@ void writeMargin(JsonWriter& w, const char* name, const Margin& m, const char* u
 }
 
 void writeMargins(JsonWriter& w, const GaitFile& gait, const GaitEvaluation<double>& e,
-                  const Model& model, const WalkRequest& req) {
-  const MarginRequest mr;
-  // A perturbed step lands with non-zero velocity: the rigid impact with friction; when it
-  // lifts the rear foot the new SS starts at once (the DS of the cycle is skipped, not failed).
-  ImpactOptions io;
-  io.mu = gait.options.friction_coefficient;
-  const TouchdownMap td = impactTouchdown(ImpactModelKind::Algebraic, io, false);
+                  const Model& model, const WalkRequest& req, int steps) {
+  MarginRequest mr;
+  mr.steps = steps;
+  // A perturbed step lands with non-zero velocity, located by foot height: the touchdown map of
+  // simulate (a DS gait's plastic impact with both feet held, else the algebraic rigid impact),
+  // except that an impact lifting the rear foot starts the next SS at once (DS skipped).
+  const std::string impact = resolvedImpactModel(gait.options, "auto");
+  const double mu = gait.options.friction_coefficient;
+  const TouchdownMap td = impact == "double_support" ? doubleSupportTouchdown(mu, true)
+                                                     : gaitTouchdown(gait.options, impact, mu);
   w.key("margins").beginObject();
   w.key("recovery_steps").value(mr.steps);
   w.key("tolerance").value(mr.tolerance);
-  w.key("touchdown").value("algebraic rigid impact, SS at once when the rear foot lifts");
+  w.key("touchdown").value("foot height, impact model " + impact +
+                           ", SS at once when the impact lifts the rear foot");
   writeMargin(w, "push_forward", largestPush(e, model, req, 1, mr, td), "m/s");
   writeMargin(w, "push_backward", largestPush(e, model, req, -1, mr, td), "m/s");
   writeMargin(w, "trunk_payload",
               largestPayload(e, gait.robot, gait.model_options, req, mr, td), "kg");
-  w.key("slope").null();  // not computed: the plant has flat ground
+  w.key("slope").beginObject();
+  writeMargin(w, "up", largestSlope(e, model, req, 1, mr, td), "rad");
+  writeMargin(w, "down", largestSlope(e, model, req, -1, mr, td), "rad");
+  w.endObject();
   w.endObject();
 }
 
@@ -133,6 +141,10 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--map-range", a->range, "Relative alphad range of the 1-D map (+-)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.95));
+  cmd->add_option("--margin-steps", a->margin_steps,
+                  "Steps walked after a push, on a slope or with a payload (margins)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
   cmd->add_option("--map-points", a->points, "Points of the 1-D map")
       ->capture_default_str()
       ->check(CLI::Range(2, 10001));
@@ -155,7 +167,13 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
     // the torque limits is non-smooth); margins and the saturation count use the projection.
     WalkRequest analysis = req;
     analysis.torque_limits = false;
-    const TouchdownMap td = gaitTouchdown(gait.options, "auto", gait.options.friction_coefficient);
+    // A zero-velocity landing's foot height is tangent to the ground at α_fSS (no transversal
+    // crossing for the saltation matrix): the analysis locates its touchdown by α, impulse-free.
+    const bool impact_landing = gait.options.parameterisation.landsWithImpact();
+    analysis.touchdown_by_foot_height = impact_landing;
+    analysis.hold_references_past_fss = false;
+    const TouchdownMap td = gaitTouchdown(gait.options, impact_landing ? "auto" : "none",
+                                          gait.options.friction_coefficient);
     const StepMap P = walkingStepMap(e, model, model, analysis, td);
     const Eigen::VectorXd x = walkingCycleState(e.motion);
     const PoincareLinearisation L =
@@ -191,9 +209,10 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
     w.endObject();
     w.key("stable").value(std::abs(L.eigenvalues(0)) < 1.0);
     w.key("torque_limits_in_analysis").value(false);
-    w.key("saturated_samples_on_cycle").value(saturatedOnCycle(e, model, req, x, td));
+    w.key("saturated_samples_on_cycle").value(saturatedOnCycle(
+        e, model, req, x, gaitTouchdown(gait.options, "auto", gait.options.friction_coefficient)));
     writeZeroDynamics(w, zd, zr.max_steps);
-    writeMargins(w, gait, e, model, req);
+    writeMargins(w, gait, e, model, req, a->margin_steps);
     w.endObject();
     const fs::path dir(a->out);
     fs::create_directories(dir);

@@ -1,6 +1,7 @@
 #include "gaitopt/sim/closed_loop.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "gaitopt/gait/ds_force_distribution.hpp"
@@ -35,13 +36,23 @@ struct InputResponse {
   Vec2 R1, R2;
 };
 
-// Rows c(v) ≤ 0 of (4.51)–(4.54): torque envelope, unilateral normal forces, friction cones.
-Eigen::VectorXd constraintValues(const InputResponse& r, const Vec4& limit, double mu,
+// The contact constraints of the projection: friction cones of coefficient mu about the normal
+// of the ground inclined by `slope`, normal forces of at least r_min ((4.2): the margin
+// R_min > 0 that keeps a foot loaded).
+struct ContactLimits {
+  double mu, r_min, slope;
+};
+
+// Rows c(v) ≤ 0 of (4.51)–(4.54): torque envelope, normal forces ≥ R_min, friction cones.
+Eigen::VectorXd constraintValues(const InputResponse& r, const Vec4& limit, const ContactLimits& k,
                                  bool double_support) {
+  const double mu = k.mu;
+  const Eigen::Rotation2Dd to_ground(-k.slope);
+  const Vec2 R1 = to_ground * r.R1, R2 = to_ground * r.R2;
   Eigen::VectorXd c(double_support ? 14 : 11);
-  c << r.gamma_star - limit, -r.gamma_star - limit, -r.R1(1), r.R1(0) - mu * r.R1(1),
-      -r.R1(0) - mu * r.R1(1), Eigen::VectorXd::Zero(c.size() - 11);
-  if (double_support) c.tail<3>() << -r.R2(1), r.R2(0) - mu * r.R2(1), -r.R2(0) - mu * r.R2(1);
+  c << r.gamma_star - limit, -r.gamma_star - limit, k.r_min - R1(1), R1(0) - mu * R1(1),
+      -R1(0) - mu * R1(1), Eigen::VectorXd::Zero(c.size() - 11);
+  if (double_support) c.tail<3>() << k.r_min - R2(1), R2(0) - mu * R2(1), -R2(0) - mu * R2(1);
   return c;
 }
 
@@ -55,19 +66,23 @@ struct Projected {
 // torque limits alone are always feasible: Γ* is an invertible affine function of v).
 template <class Response>
 Projected projectInputs(const Response& response, const Vec4& v_d, const Vec4& w, const Vec4& limit,
-                        double mu, bool double_support) {
+                        const ContactLimits& k, bool double_support) {
   const InputResponse r0 = response(v_d);
-  const Eigen::VectorXd c0 = constraintValues(r0, limit, mu, double_support);
+  const Eigen::VectorXd c0 = constraintValues(r0, limit, k, double_support);
   if (c0.maxCoeff() <= kConstraintTolerance) return {v_d};
   Eigen::MatrixXd G(c0.size(), 4);
   for (int i = 0; i < 4; ++i)  // exact columns: the response is affine in v
     G.col(i) =
-        constraintValues(response(Vec4(v_d + Vec4::Unit(i))), limit, mu, double_support) - c0;
+        constraintValues(response(Vec4(v_d + Vec4::Unit(i))), limit, k, double_support) - c0;
   const Eigen::VectorXd h = G * v_d - c0;
   SmallQpResult qp = solveLeastDistanceQp(G, h, w, v_d);
   Projected p{qp.x, true, !qp.feasible};
   if (!qp.feasible) p.v = solveLeastDistanceQp(G.topRows(8), h.head(8), w, v_d).x;
   return p;
+}
+
+ContactLimits contactLimits(const ClosedLoop& s) {
+  return {s.options.friction_coefficient, s.options.min_normal_force, s.options.ground_slope};
 }
 
 Vec4 torqueLimits(const ClosedLoop& s, const Vec5& qd) {
@@ -78,11 +93,31 @@ Vec4 torqueLimits(const ClosedLoop& s, const Vec5& qd) {
   return l;
 }
 
+// α past α_fSS over which a held reference's slope decays [rad] (≈ 20 ms at the default
+// gait's α̇): a C¹ hold, where a step of the slope would make the PD demand a torque spike that
+// slips the stance foot.
+constexpr double kHoldLength = 0.02;
+
+// δ_d,j(α) and its α-derivatives. Past α_fSS with hold_references_past_fss the reference is held
+// C¹: δ_d(α_f) + δ_d'(α_f) σ τ (1 − e^{−d/τ}), d = σ (α − α_f) ≥ 0 the distance past α_fSS
+// along the step's direction σ, τ = kHoldLength.
+PolyValue<double> ssReference(const ClosedLoop& s, int j, double alpha) {
+  const GaitMotion<double>& mo = s.motion;
+  const double sigma = mo.alpha_fSS > mo.q_iSS(0) ? 1.0 : -1.0;
+  const double d = sigma * (alpha - mo.alpha_fSS);
+  if (!s.options.hold_references_past_fss || d <= 0.0) return mo.ss_path[j](alpha);
+  const PolyValue<double> f = mo.ss_path[j](mo.alpha_fSS);
+  const double decay = std::exp(-d / kHoldLength);
+  return {f.value + f.first * sigma * kHoldLength * (1.0 - decay), f.first * decay,
+          -f.first * decay * sigma / kHoldLength};
+}
+
 // SS input–output linearisation: Γ with B A⁻¹ D_Γ Γ = ÿ* + δ_d'' α̇² + B A⁻¹ (C + G), where
 // y = δ − δ_d(α), ẏ = B q̇, B = [−δ_d'(α) | I], ÿ* = −ω² y − 2ω ẏ. With touchdown by foot
 // height, α may pass α_fSS before the foot lands: the polynomials δ_d are then extrapolated
-// (the thesis freezes them at α_fSS, §4.3.1.3, which steps the reference's slope and makes the
-// PD demand a torque spike).
+// for an impact landing (the thesis freezes them at α_fSS, §4.3.1.3, which steps the
+// reference's slope and makes the PD demand a torque spike) and held for a zero-velocity
+// landing (ClosedLoopOptions::hold_references_past_fss: only the freeze brings its foot down).
 Vec4 ssControl(const ClosedLoop& s, const Vec5& q, const Vec5& qd, ClosedLoopPoint& e) {
   const Model& c = s.controller;
   const GaitMotion<double>& mo = s.motion;
@@ -90,7 +125,7 @@ Vec4 ssControl(const ClosedLoop& s, const Vec5& q, const Vec5& qd, ClosedLoopPoi
   Eigen::Matrix<double, 4, 5> B = Eigen::Matrix<double, 4, 5>::Zero();
   Vec4 curvature;
   for (int j = 0; j < 4; ++j) {
-    const PolyValue<double> v = mo.ss_path[j](q(0));
+    const PolyValue<double> v = ssReference(s, j, q(0));
     B(j, 0) = -v.first;
     B(j, j + 1) = 1.0;
     e.error(j) = q(j + 1) - v.value;
@@ -114,7 +149,7 @@ Vec4 ssControl(const ClosedLoop& s, const Vec5& q, const Vec5& qd, ClosedLoopPoi
   const Vec4 v_d = -w * w * e.error - 2.0 * w * (B * qd);
   if (!s.options.torque_limits) return response(v_d).gamma_star;
   const Projected p = projectInputs(response, v_d, Vec4::Ones(), torqueLimits(s, qd),
-                                    s.options.friction_coefficient, false);
+                                    contactLimits(s), false);
   e.saturated = p.saturated;
   e.projection_infeasible = p.infeasible;
   return response(p.v).gamma_star;
@@ -221,7 +256,8 @@ Vec4 dsControl(const ClosedLoop& s, const DsReference& ds, double t, const Vec5&
   Vec4 v_d;
   v_d << in.v_d, r2xMinTorque(aff.J, aff.K, bounds, kBranchFree).r2x;  // (3.68)–(3.70)
   if (!s.options.torque_limits) return response(v_d).gamma_star;
-  const Projected pr = projectInputs(response, v_d, in.weights, torqueLimits(s, qd), mu, true);
+  const Projected pr =
+      projectInputs(response, v_d, in.weights, torqueLimits(s, qd), contactLimits(s), true);
   e.saturated = pr.saturated;
   e.projection_infeasible = pr.infeasible;
   return response(pr.v).gamma_star;
@@ -293,7 +329,8 @@ ClosedLoopPoint evaluateClosedLoop(const ClosedLoop& s, bool ss, const DsReferen
     dsPlant(p, q, qd, e.gamma_star - e.friction, e.qdd, e.R2);
   }
   const Vec2 acc = pinnedComAcceleration(p, q, qd, e.qdd);
-  e.R1 = Vec2(p.total_mass * acc(0), p.total_mass * (acc(1) + p.gravity)) - e.R2;
+  e.R1 = toGroundFrame(s, Vec2(p.total_mass * acc(0), p.total_mass * (acc(1) + p.gravity)) - e.R2);
+  e.R2 = toGroundFrame(s, e.R2);
   return e;
 }
 
@@ -306,9 +343,25 @@ void closedLoopRhs(const ClosedLoop& s, bool ss, const DsReference& ds, double t
   f << qd, e.qdd, w.dot(e.gamma_star), w.dot(e.friction);
 }
 
+Vec2 toGroundFrame(const ClosedLoop& s, const Vec2& v) {
+  return Eigen::Rotation2Dd(-s.options.ground_slope) * v;
+}
+
+bool touchdownArmed(const ClosedLoop& s, const Vec5& q) {
+  const GaitMotion<double>& mo = s.motion;
+  return (q(0) - 0.5 * (mo.q_iSS(0) + mo.alpha_fSS)) * (mo.alpha_fSS - mo.q_iSS(0)) > 0.0;
+}
+
 double touchdownEvent(const ClosedLoop& s, const Vec5& q) {
   if (!s.options.touchdown_by_foot_height) return q(0) - s.motion.alpha_fSS;
-  return chainPoint(s.plant.pinned.foot2, chainState(s.plant, q, Vec5(Vec5::Zero())))(1);
+  if (!touchdownArmed(s, q)) return 1.0;
+  const Vec2 foot2 = chainPoint(s.plant.pinned.foot2, chainState(s.plant, q, Vec5(Vec5::Zero())));
+  return toGroundFrame(s, foot2)(1);
+}
+
+double touchdownEventRate(const ClosedLoop& s, const Vec5& q, const Vec5& qd) {
+  if (!s.options.touchdown_by_foot_height) return qd(0);
+  return toGroundFrame(s, Vec2(pinnedTerms(s.plant, q, qd).D2 * qd))(1);
 }
 
 void closedLoopEvents(const ClosedLoop& s, bool ss, const DsReference& ds, double t,
@@ -321,10 +374,11 @@ void closedLoopEvents(const ClosedLoop& s, bool ss, const DsReference& ds, doubl
   g.resize(kClosedLoopEvents);
   if (ss) {
     const ChainState<double> st = chainState(p, q, qd);
-    const double foot2_z = chainPoint(p.pinned.foot2, st)(1);
+    const double foot2_z = toGroundFrame(s, chainPoint(p.pinned.foot2, st))(1);
     const bool by_height = s.options.touchdown_by_foot_height;
-    g << touchdownEvent(s, q), by_height ? 1.0 : foot2_z + kGroundTolerance, e.R1(1) + slack,
-        chainPoint(p.pinned.hip, st)(1) - kFallHipHeight, -qd(0), mu * e.R1(1) - e.R1(0) + slack,
+    const bool armed = by_height && touchdownArmed(s, q);
+    g << touchdownEvent(s, q), armed ? 1.0 : foot2_z + kGroundTolerance, e.R1(1) + slack,
+        toGroundFrame(s, chainPoint(p.pinned.hip, st))(1) - kFallHipHeight, -qd(0), mu * e.R1(1) - e.R1(0) + slack,
         mu * e.R1(1) + e.R1(0) + slack;
   } else {
     // DS end: T_DS elapsed (cubic control), or α reaches α_fDS (time-optimal control, §4.3.1).
@@ -350,6 +404,15 @@ TouchdownMap impulseFreeTouchdown(double speed_tol, bool double_support) {
     r.double_support_follows = double_support;
     return r;
   };
+}
+
+TouchdownResult touchdownOnGround(const ClosedLoop& s, const TouchdownMap& map, const Vec5& q,
+                                  const Vec5& qd) {
+  // Adding φ to α turns the whole robot by φ about foot 1 (every θ_k contains α, (1.13)).
+  const Vec5 turn = s.options.ground_slope * Vec5::Unit(0);
+  TouchdownResult r = map(s.plant, q - turn, qd);
+  if (r.ok) r.q_plus += turn;  // the relabelled α is again an absolute angle
+  return r;
 }
 
 }  // namespace gaitopt

@@ -14,9 +14,12 @@ ClosedLoopOptions closedLoopOptions(const WalkRequest& r) {
   o.friction_coefficient = r.friction_coefficient;
   o.plant_friction_coefficient =
       r.plant_friction_coefficient < 0.0 ? r.friction_coefficient : r.plant_friction_coefficient;
+  o.min_normal_force = r.min_normal_force;
+  o.ground_slope = r.ground_slope;
   o.torque_limits = r.torque_limits;
   o.full_torque_envelope = r.full_torque_envelope;
   o.touchdown_by_foot_height = r.touchdown_by_foot_height;
+  o.hold_references_past_fss = r.hold_references_past_fss;
   o.ds_control = r.ds_control;
   return o;
 }
@@ -113,10 +116,14 @@ void Walker::startStep(double t, Eigen::VectorXd& y, int k) {
 }
 
 // The step ends at the next SS start (after lift-off, or at once after an impact that lifts
-// foot 1): its energy there, in the new stance labelling, and the step's work integrals.
+// foot 1): its energy there, in the new stance labelling with the potential still measured
+// from the step's stance foot (the new one is higher by touchdown_rise on a slope), and the
+// step's work integrals.
 void Walker::endStep(const Eigen::VectorXd& y) {
   WalkStep& s = out_.steps.back();
-  s.energy_end = pinnedEnergy(sys_.plant, y.head<5>(), y.segment<5>(5));
+  const Model& p = sys_.plant;
+  s.energy_end = pinnedEnergy(p, y.head<5>(), y.segment<5>(5)) +
+                 p.total_mass * p.gravity * s.touchdown_rise;
   s.step_motor_work = y(10);
   s.step_friction_loss = y(11);
 }
@@ -143,13 +150,10 @@ bool Walker::singleSupport(double& t, Eigen::VectorXd& y, int k) {
   const Vec5 q = y.head<5>(), qd = y.segment<5>(5);
   WalkStep& st = out_.steps.back();
   st.t_touchdown = t;
-  const Vec2 foot2_velocity = pinnedTerms(sys_.plant, q, qd).D2 * qd;
   st.touchdown_event_residual =
-      req_.touchdown_by_foot_height
-          ? std::abs(chainPoint(sys_.plant.pinned.foot2, chainState(sys_.plant, q, qd))(1)) /
-                std::abs(foot2_velocity(1))
-          : std::abs(q(0) - mo_.alpha_fSS) / std::abs(qd(0));
-  st.touchdown_foot_speed = foot2_velocity.norm();
+      std::abs(touchdownEvent(sys_, q)) / std::abs(touchdownEventRate(sys_, q, qd));
+  st.touchdown_foot_speed = (pinnedTerms(sys_.plant, q, qd).D2 * qd).norm();
+  st.touchdown_rise = chainPoint(sys_.plant.pinned.foot2, chainState(sys_.plant, q, qd))(1);
   st.energy_touchdown = pinnedEnergy(sys_.plant, q, qd);
   st.motor_work = y(10);
   st.friction_loss = y(11);
@@ -157,7 +161,7 @@ bool Walker::singleSupport(double& t, Eigen::VectorXd& y, int k) {
 }
 
 bool Walker::touchdown(double t, Eigen::VectorXd& y, int k) {
-  const TouchdownResult td = td_(sys_.plant, y.head<5>(), y.segment<5>(5));
+  const TouchdownResult td = touchdownOnGround(sys_, td_, y.head<5>(), y.segment<5>(5));
   if (!td.ok) return fail(td.failure, td.why + ", " + at(k, t));
   WalkStep& st = out_.steps.back();
   st.impact_behaviour = td.behaviour;
@@ -218,7 +222,9 @@ void configureForGait(const GaitOptions& o, WalkRequest& r) {
   r.friction_coefficient = o.friction_coefficient;
   r.plant_friction_coefficient = o.friction_coefficient;
   r.full_torque_envelope = o.full_torque_envelope;
-  r.touchdown_by_foot_height = o.parameterisation.landsWithImpact();
+  r.min_normal_force = o.min_normal_force;
+  r.touchdown_by_foot_height = true;
+  r.hold_references_past_fss = !o.parameterisation.landsWithImpact();
 }
 
 double stepEnergyBalanceError(const WalkStep& s) {

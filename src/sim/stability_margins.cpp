@@ -118,4 +118,22 @@ Margin largestPayload(const GaitEvaluation<double>& e, const RobotParams& robot,
       mr.payload_upper, mr.payload_resolution);
 }
 
+bool slopeWalked(const GaitEvaluation<double>& e, const Model& model, const WalkRequest& base,
+                 double slope, const MarginRequest& mr, const TouchdownMap& td, std::string& why) {
+  WalkRequest req = base;
+  req.ground_slope = slope;
+  const WalkResult r = walkFrom(e, model, model, req, walkingCycleState(e.motion), mr.steps, td);
+  why = std::string(outcomeName(r.outcome)) + ": " + r.message;
+  return r.outcome == WalkOutcome::Completed;
+}
+
+Margin largestSlope(const GaitEvaluation<double>& e, const Model& model, const WalkRequest& base,
+                    int direction, const MarginRequest& mr, const TouchdownMap& td) {
+  return bisect(
+      [&](double s, std::string& why) {
+        return slopeWalked(e, model, base, direction * s, mr, td, why);
+      },
+      mr.slope_upper, mr.slope_resolution);
+}
+
 }  // namespace gaitopt

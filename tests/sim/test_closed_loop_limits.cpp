@@ -14,6 +14,7 @@
 #include "gaitopt/sim/impact_touchdown.hpp"
 #include "test_default_gait.hpp"
 #include "test_support.hpp"
+#include "test_walk_request.hpp"
 
 namespace gaitopt::test {
 namespace {
@@ -21,13 +22,6 @@ namespace {
 struct ImpactGait : ShippedGait {
   ImpactGait() : ShippedGait("configs/gait/chevallereau_aoustin_0.75_impact.yaml") {}
 };
-
-WalkRequest gaitRequest(const GaitOptions& o, int steps) {
-  WalkRequest req;
-  req.steps = steps;
-  configureForGait(o, req);
-  return req;
-}
 
 // Largest |Γ*_j| / limit_j(ω_j) over the samples.
 double torqueRatio(const Model& m, const WalkResult& r, bool full) {
@@ -130,12 +124,14 @@ TEST_CASE("Energy balance over whole steps with double support", "[sim]") {
   const DefaultGait f;
   WalkRequest req = gaitRequest(f.gait.options, 2);
   req.dalphad0 = 0.01;
-  const WalkResult r = simulateWalk(f.evaluation, f.model, f.model, req);
+  const WalkResult r =
+      simulateWalk(f.evaluation, f.model, f.model, req,
+                   gaitTouchdown(f.gait.options, "auto", req.friction_coefficient));
   INFO(r.message);
   REQUIRE(r.outcome == WalkOutcome::Completed);
   for (const WalkStep& s : r.steps) {
     CHECK(s.double_support);
-    CHECK(s.impact_energy_loss == 0.0);
+    CHECK(s.impact_energy_loss < 1e-9);  // the foot grazes the ground: a round-off impact
     CHECK(std::abs(s.step_motor_work - s.motor_work) > 1e-3);  // the DS does work too
     CHECK(std::abs(stepEnergyBalanceError(s)) <= 1e-8);
   }
@@ -158,23 +154,33 @@ TEST_CASE("Torque projection keeps the motor torques within the envelope", "[sim
   CHECK(torqueRatio(f.model, limited, req.full_torque_envelope) <= 1.0 + 1e-9);
 }
 
-TEST_CASE("Contact projection: a faster start walks with its DS normal force held at 0", "[sim]") {
+TEST_CASE("Contact projection: a faster start walks with its DS normal force held at R_min",
+          "[sim]") {
   const DefaultGait f;
   WalkRequest req = gaitRequest(f.gait.options, 2);
+  REQUIRE(req.min_normal_force == 20.0);  // the gait's min_normal_force
+  const TouchdownMap td = gaitTouchdown(f.gait.options, "auto", req.friction_coefficient);
   req.dalphad0 = -0.01;
   req.torque_limits = false;
-  const WalkResult free = simulateWalk(f.evaluation, f.model, f.model, req);
+  const WalkResult free = simulateWalk(f.evaluation, f.model, f.model, req, td);
   CHECK(free.outcome == WalkOutcome::StanceLiftOff);
   req.torque_limits = true;
-  const WalkResult held = simulateWalk(f.evaluation, f.model, f.model, req);
-  INFO(held.message);
-  REQUIRE(held.outcome == WalkOutcome::Completed);
-  double least = 1e9;
-  for (const WalkSample& s : held.samples)
-    if (!s.single_support) least = std::min({least, s.R1(1), s.R2(1)});
-  CHECK(least >= -1e-6);
-  CHECK(least <= 1e-3);  // the bound was active
-  CHECK(held.steps[1].alphad_start == Approx(f.evaluation.motion.alphadot_iSS).margin(1e-6));
+  for (const double r_min : {20.0, 0.0}) {
+    DYNAMIC_SECTION("R_min = " << r_min << " N") {
+      req.min_normal_force = r_min;
+      const WalkResult held = simulateWalk(f.evaluation, f.model, f.model, req, td);
+      INFO(held.message);
+      REQUIRE(held.outcome == WalkOutcome::Completed);
+      double least = 1e9;
+      for (const WalkSample& s : held.samples)
+        if (!s.single_support) least = std::min({least, s.R1(1), s.R2(1)});
+      CHECK(least >= r_min - 1e-6);
+      CHECK(least <= r_min + 1e-3);  // the bound was active
+      // Held at 20 N the DS gives way on α: the cycle's α̇ is restored to 10⁻⁴, not 10⁻⁶.
+      CHECK(held.steps[1].alphad_start ==
+            Approx(f.evaluation.motion.alphadot_iSS).margin(r_min > 0.0 ? 1e-4 : 1e-6));
+    }
+  }
 }
 
 TEST_CASE("Low-friction ground: the stance foot slips", "[sim]") {
@@ -201,7 +207,9 @@ TEST_CASE("Time-optimal DS control of alpha reaches the cyclic curve", "[sim]") 
   WalkRequest req = gaitRequest(f.gait.options, 3);
   req.ds_control = DsAlphaControl::TimeOptimal;
   req.dalphad0 = 0.01;
-  const WalkResult r = simulateWalk(f.evaluation, f.model, f.model, req);
+  const WalkResult r =
+      simulateWalk(f.evaluation, f.model, f.model, req,
+                   gaitTouchdown(f.gait.options, "auto", req.friction_coefficient));
   INFO(r.message);
   REQUIRE(r.outcome == WalkOutcome::Completed);
   for (std::size_t k = 1; k < r.steps.size(); ++k)

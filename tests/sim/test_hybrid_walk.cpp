@@ -108,7 +108,7 @@ TEST_CASE("gaitopt simulate CLI: outputs, outcome, bad input", "[sim]") {
   CHECK_THAT(summary, Catch::Matchers::Contains("\"converged_to_cycle\": true"));
   // The torque projection acts at each SS start (see above): a nearby cycle, not the reference.
   CHECK_THAT(summary, Catch::Matchers::Contains("\"tracks_reference\": false"));
-  CHECK_THAT(summary, Catch::Matchers::Contains("\"impact_model\": \"none\""));
+  CHECK_THAT(summary, Catch::Matchers::Contains("\"impact_model\": \"double_support\""));
   run = runCli("simulate --gait " + quoted(gait) + " --steps 2 --no-torque-limits --out " +
                quoted(dir.fresh("walk")));
   REQUIRE(run.exit_code == 0);
@@ -116,14 +116,16 @@ TEST_CASE("gaitopt simulate CLI: outputs, outcome, bad input", "[sim]") {
   const ExportCsvFile traj = readExportCsv(out + "/trajectory.csv");
   CHECK(traj.rows.back().step == 2);
   CHECK(traj.rows.front().stance == Leg::Left);
-  // A plant without the support bar: tracking errors remain at touchdown.
+  // A plant without the support bar: its foot lands by height with the held impact, then the
+  // controller's DS force split (built with the bar) slips the rear foot at once.
   const std::string out2 = dir.fresh("walk");
   run = runCli("simulate --gait " + quoted(gait) + " --steps 2 --plant " +
                quoted(sourcePath("configs/robot/rabbit_miossec_nobar.yaml")) + " --out " +
                quoted(out2));
   CHECK(run.exit_code == 3);
   CHECK_THAT(readFile(out2 + "/summary.json"),
-             Catch::Matchers::Contains("impact model not available"));
+             Catch::Matchers::Contains("friction cone in double support, step 0"));
+  CHECK_THAT(readFile(out2 + "/steps.csv"), Catch::Matchers::Contains(",held/stick,"));
   // The impact-landing gait: algebraic impact by default; a low-μ ground slides at impact.
   const std::string impact_gait = sourcePath("configs/gait/chevallereau_aoustin_0.75_impact.yaml");
   const std::string out3 = dir.fresh("walk");
@@ -145,6 +147,10 @@ TEST_CASE("gaitopt simulate CLI: outputs, outcome, bad input", "[sim]") {
                quoted(dir.fresh("bad")));
   CHECK(run.exit_code == 2);
   CHECK_THAT(run.err, Catch::Matchers::Contains("unknown KIND 'knee'"));
+  run = runCli("simulate --gait " + quoted(gait) + " --perturb slope=0.6 --out " +
+               quoted(dir.fresh("bad")));
+  CHECK(run.exit_code == 2);
+  CHECK_THAT(run.err, Catch::Matchers::Contains("slope must be within (-0.5, 0.5) rad"));
 }
 
 }  // namespace gaitopt::test

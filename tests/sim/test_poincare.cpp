@@ -69,7 +69,8 @@ TEST_CASE("gaitopt stability CLI writes the analysis and exits 0 for a stable cy
   const std::string out = dir.fresh("stab");
   const CliRun run = runCli("stability --gait " +
                             quoted(sourcePath("configs/gait/default_step.yaml")) +
-                            " --map-points 3 --map-range 0.01 --out " + quoted(out));
+                            " --map-points 3 --map-range 0.01 --margin-steps 1 --out " +
+                            quoted(out));
   INFO(run.err);
   REQUIRE(run.exit_code == 0);
   CHECK_THAT(readFile(out + "/stability.json"), Catch::Matchers::Contains("\"stable\": true"));
@@ -83,6 +84,9 @@ TEST_CASE("gaitopt stability CLI writes the analysis and exits 0 for a stable cy
   CHECK_THAT(json, Catch::Matchers::Contains("\"jacobian_method\": \"sensitivity\""));
   CHECK_THAT(json, Catch::Matchers::Contains("\"zero_dynamics\""));
   CHECK_THAT(json, Catch::Matchers::Contains("\"push_forward\""));
+  CHECK_THAT(json, Catch::Matchers::Contains("\"recovery_steps\": 1"));
+  CHECK_THAT(json, Catch::Matchers::Contains("\"slope\": {"));
+  CHECK_THAT(json, Catch::Matchers::Contains("\"down\": {"));
   const CliRun bad = runCli("stability --gait " +
                             quoted(sourcePath("configs/gait/default_step.yaml")) +
                             " --jacobian exact --out " + quoted(dir.fresh("bad")));

@@ -43,9 +43,22 @@ struct ClosedLoopOptions {
   double bandwidth = 40.0;                  // ω [rad/s] of the critically damped outputs
   double friction_coefficient = 0.8;        // controller's cones (the gait option)
   double plant_friction_coefficient = 0.8;  // plant ground: slip when |Rx| > μ Rz
+  double min_normal_force = 0.0;            // R_min [N] of the projection's normal force rows (4.2)
+  // Plant ground inclined by this angle [rad], + uphill (rising toward +x). The state stays in
+  // the world frame (gravity vertical, α from the vertical: what the controller measures, so it
+  // walks upright on its flat-ground references); foot heights and reactions are taken in the
+  // ground frame, the impact is solved there (it does not involve gravity), and the
+  // projection's friction cones and normal forces are those of the inclined ground.
+  double ground_slope = 0.0;
   bool torque_limits = true;                // project the inputs (4.57), (4.60)
   bool full_torque_envelope = true;         // (3.47) with its sloped parts
-  bool touchdown_by_foot_height = false;    // impact landings: touchdown when foot 2 reaches z = 0
+  bool touchdown_by_foot_height = false;    // touchdown when foot 2 reaches z = 0 (else α = α_fSS)
+  // Past α_fSS the SS references are extrapolated (impact landings) or, with this, held (C¹,
+  // their slope decaying over 0.02 rad of α): a zero-velocity landing's foot only grazes the
+  // ground at α_fSS and the extrapolated polynomials would lift it again, whereas held outputs
+  // turn the robot as one body about the stance foot and bring the swing foot down (the
+  // thesis' freeze, §4.3.1.3, made C¹).
+  bool hold_references_past_fss = false;
   DsAlphaControl ds_control = DsAlphaControl::Cubic;
 };
 
@@ -71,7 +84,7 @@ struct ClosedLoopPoint {
   Vec4 friction = Vec4::Zero();    // plant joint friction
   Vec4 error = Vec4::Zero();  // y (SS); DS: (α, δ1, δ2) errors (cubic) or (α̇_c − α̇, y1, y2)
                               // (time-optimal), 0
-  Vec2 R1 = Vec2::Zero(), R2 = Vec2::Zero();  // plant reactions
+  Vec2 R1 = Vec2::Zero(), R2 = Vec2::Zero();  // plant reactions, ground frame (x along, z normal)
   bool saturated = false;                     // the projection changed the inputs
   bool projection_infeasible = false;  // contact constraints dropped to keep the torque limits
 };
@@ -103,9 +116,15 @@ enum DsEvent {
   kFrontSlipForward,
   kFrontSlipBackward
 };
-// The touchdown event alone (kTouchdown): α reaches α_fSS (a zero-velocity landing only
-// grazes the ground), or, for an impact landing, the swing foot reaches the ground.
+// A world-frame vector in the plant's ground frame (rotated by −ground_slope).
+Vec2 toGroundFrame(const ClosedLoop& s, const Vec2& v);
+
+// The touchdown event alone (kTouchdown): α reaches α_fSS, or (touchdown_by_foot_height) the
+// swing foot reaches the ground once α is past mid SS (before, the foot just lifted off may
+// graze the ground: the kSwingBelowGround event, 10⁻⁶ m below, ends the walk as
+// early_touchdown). Its time derivative at (q, q̇) (for the event residual).
 double touchdownEvent(const ClosedLoop& s, const Vec5& q);
+double touchdownEventRate(const ClosedLoop& s, const Vec5& q, const Vec5& qd);
 void closedLoopEvents(const ClosedLoop& s, bool single_support, const DsReference& ds, double t,
                       const Eigen::VectorXd& y, Eigen::VectorXd& g);
 
@@ -128,5 +147,10 @@ using TouchdownMap =
 // (3.22), (3.23); a DS follows when `double_support` . Fails ("impact model not available")
 // when the foot speed exceeds `speed_tol`.
 TouchdownMap impulseFreeTouchdown(double speed_tol = 1e-6, bool double_support = true);
+
+// The touchdown map `map` applied on the plant's inclined ground: solved on the configuration
+// rotated into the ground frame (the map assumes flat ground), the result rotated back.
+TouchdownResult touchdownOnGround(const ClosedLoop& s, const TouchdownMap& map, const Vec5& q,
+                                  const Vec5& qd);
 
 }  // namespace gaitopt

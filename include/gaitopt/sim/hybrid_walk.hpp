@@ -19,9 +19,12 @@ struct WalkRequest {
   double sample_rate = 200.0;                // trajectory rows [Hz] (events are always recorded)
   double friction_coefficient = 0.8;         // of the controller's cones (gait option)
   double plant_friction_coefficient = -1.0;  // plant ground μ for slip; < 0: friction_coefficient
+  double min_normal_force = 0.0;             // R_min [N] of the projection (gait option)
+  double ground_slope = 0.0;                 // plant ground [rad], + uphill (ClosedLoopOptions)
   bool torque_limits = true;                 // project the inputs on the limits (4.57), (4.60)
   bool full_torque_envelope = true;          // (3.47) with its sloped parts (gait option)
-  bool touchdown_by_foot_height = false;     // impact landings: touchdown at foot-2 height 0
+  bool touchdown_by_foot_height = false;     // touchdown at foot-2 height 0 (else α = α_fSS)
+  bool hold_references_past_fss = false;     // ClosedLoopOptions::hold_references_past_fss
   DsAlphaControl ds_control = DsAlphaControl::Cubic;
   bool use_initial_state = false;  // start from (q_init, qd_init) instead of the gait's SS start
   Vec5 q_init = Vec5::Zero(), qd_init = Vec5::Zero();
@@ -47,8 +50,9 @@ struct WalkStep {
   double t_start, t_touchdown = 0.0, t_liftoff = 0.0;
   double alphad_start;                    // α̇ at SS start
   double max_output_error = 0.0;          // max |y| over SS [rad]
-  double touchdown_event_residual = 0.0;  // |α − α_fSS| / |α̇| at the event [s]
+  double touchdown_event_residual = 0.0;  // |g| / |ġ| of the touchdown event there [s]
   double touchdown_foot_speed = 0.0;
+  double touchdown_rise = 0.0;  // world height of the landing foot above the stance foot [m]
   double energy_start, energy_touchdown = 0.0;  // pinned mechanical energy [J]
   double motor_work = 0.0, friction_loss = 0.0;  // over the SS: ∫ωᵀΓ* dt, ∫ωᵀ(Γ* − Γ) dt
   double min_normal_force = 0.0;                 // over SS and DS, from the samples [N]
@@ -57,7 +61,8 @@ struct WalkStep {
   double impact_energy_loss = 0.0;                        // [J]
   Vec2 impulse1 = Vec2::Zero(), impulse2 = Vec2::Zero();  // [N·s]
   bool double_support = true;                             // a DS followed the touchdown
-  // Whole step (SS start → next SS start, legs relabelled): ΔE = W − F − impact loss.
+  // Whole step (SS start → next SS start, legs relabelled): ΔE = W − F − impact loss, E_end
+  // with the potential measured from the step's stance foot.
   double energy_end = 0.0, step_motor_work = 0.0, step_friction_loss = 0.0;
   int saturated_samples = 0;            // samples where the projection acted
   double first_saturation_time = -1.0;  // [s], −1: none
@@ -72,8 +77,8 @@ struct WalkResult {
 };
 
 // The request's gait-dependent fields from the gait options: the controller's cones and the
-// plant's ground (friction_coefficient), the torque envelope, touchdown by foot height for an
-// impact landing.
+// plant's ground (friction_coefficient), the torque envelope, touchdown by foot height, with
+// the references held past α_fSS for a zero-velocity landing.
 void configureForGait(const GaitOptions& options, WalkRequest& request);
 
 // The closed loop's options of a request (sim/closed_loop.hpp).

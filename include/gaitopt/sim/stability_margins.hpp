@@ -6,8 +6,10 @@
 //   forward (Δv > 0) or backward, after which the walk is back on the cycle within N steps;
 // - payload: the largest point mass added at the trunk's centre of mass of the plant (the
 //   controller keeps the nominal model) with which the robot walks N steps and settles on a
-//   cycle (the real RABBIT walked with +10 kg on its torso).
-// The ground slope margin is not computed (the plant has flat ground).
+//   cycle (the real RABBIT walked with +10 kg on its torso);
+// - slope: the steepest ground, up or down, inclined from the first stance foot on, on which
+//   the robot walks N steps (the controller does not know the slope: it walks upright).
+
 #include <string>
 
 #include "gaitopt/model/robot_params.hpp"
@@ -23,6 +25,8 @@ struct MarginRequest {
   double push_resolution = 1e-3;     // [m/s]
   double payload_upper = 40.0;       // [kg]
   double payload_resolution = 0.05;  // [kg]
+  double slope_upper = 0.3;          // [rad]
+  double slope_resolution = 1e-3;    // [rad]
 };
 
 struct Margin {
@@ -52,5 +56,15 @@ Margin largestPayload(const GaitEvaluation<double>& evaluation, const RobotParam
                       const ModelOptions& options, const WalkRequest& base,
                       const MarginRequest& request,
                       const TouchdownMap& touchdown = impulseFreeTouchdown());
+
+// Walks `steps` steps from the cycle's SS start on ground inclined by `slope` [rad].
+bool slopeWalked(const GaitEvaluation<double>& evaluation, const Model& model,
+                 const WalkRequest& base, double slope, const MarginRequest& request,
+                 const TouchdownMap& touchdown, std::string& why);
+
+// direction +1: uphill, −1: downhill.
+Margin largestSlope(const GaitEvaluation<double>& evaluation, const Model& model,
+                    const WalkRequest& base, int direction, const MarginRequest& request,
+                    const TouchdownMap& touchdown = impulseFreeTouchdown());
 
 }  // namespace gaitopt
