@@ -34,8 +34,8 @@ const char* outcomeName(WalkOutcome o);
 
 enum class DsAlphaControl {
   Cubic,        // α_r(t): cubic from the touchdown state to (α_fDS, α̇_iSS) over T_DS
-  TimeOptimal,  // (4.1): to the cyclic curve α̇_c(α) at the largest α̈ the constraints allow
-                // (saturated high gain; the projection gives the bounds); ends at α_fDS
+  TimeOptimal,  // (4.1): bang-bang at the exact α̈_min/α̈_max of the LPs (4.14) towards the
+                // cyclic curve α̇_c(α), then along it (sim/ds_acceleration_bounds.hpp); ends at α_fDS
 };
 const char* toString(DsAlphaControl c);  // cubic | time_optimal
 
