@@ -210,3 +210,34 @@ TEST_CASE("Time-optimal DS law (4.1) meets the cyclic curve and ends on it at al
 }
 
 }  // namespace gaitopt::test
+
+namespace gaitopt::test {
+
+TEST_CASE("Fig. 4.5 study: a (4.28) through the gait's own cycle, the cycle inside its zone",
+          "[stability][ds_bounds]") {
+  const DefaultGait f;
+  const GaitMotion<double>& mo = f.evaluation.motion;
+  const double cycle_fDS = mo.ds_alpha(mo.T_DS).first, cycle_iDS = mo.ds_alpha(0.0).first;
+  // (4.28) at the cycle's α̇_fDS = α̇_iSS gives the gait's own DS start rate.
+  CHECK(zeroDynamicsStepMap(mo, cycle_fDS) == Approx(cycle_iDS).epsilon(1e-9));
+  // Faster SS start, faster touchdown; far too slow a start falls back in SS.
+  CHECK(zeroDynamicsStepMap(mo, 1.1 * cycle_fDS) < cycle_iDS);
+  CHECK(std::isnan(zeroDynamicsStepMap(mo, 0.0)));
+  const DsZoneStudy s =
+      studyDsZone(f.model, mo, dsLimitsOf(f.gait.options), {0.9 * cycle_fDS, cycle_fDS});
+  REQUIRE(s.rows.size() == 2u);
+  CHECK(s.cycle_in_zone == (s.cycle.fastest_iDS <= cycle_iDS && cycle_iDS <= s.cycle.slowest_iDS));
+  CHECK(s.cycle_in_zone);
+  CHECK(s.rows[1].fastest_iDS == s.cycle.fastest_iDS);
+  CHECK(s.rows[1].cycle_exists);
+  CHECK(s.existence_low <= cycle_fDS);
+  CHECK(s.existence_high >= cycle_fDS);
+  // Theorem 2's premise on the optimised cycle: its α̈_c within [α̈_min, α̈_max] up to the
+  // optimiser's constraint tolerance between its collocation nodes.
+  CHECK(s.cycle_braking_margin > -1e-3);
+  CHECK(s.cycle_speeding_up_margin > -1e-3);
+  // From rest the law (4.1) reaches the cycle iff rest is in the zone (Theorem 1).
+  CHECK((s.from_rest.end == "on_cycle") == (s.cycle.slowest_iDS == 0.0));
+}
+
+}  // namespace gaitopt::test
