@@ -122,11 +122,6 @@ Vec4 ssControl(const ClosedLoop& s, const Vec5& q, const Vec5& qd, ClosedLoopPoi
   return response(p.v).gamma_star;
 }
 
-// Gain [1/s] of the time-optimal law (4.1) near the cyclic curve: off the curve by more than
-// (α̈_max − α̈_c)/k the demanded α̈ is the exact bound of the LPs (4.14) (bang-bang); within that
-// layer it is α̈_c + k (α̇_c − α̇), the regularisation of the switch that an ODE solver needs
-// (a discontinuous right-hand side would chatter on the curve).
-constexpr double kTimeOptimalGain = 400.0;
 // Weight of the δ1, δ2 output accelerations against α̈ in the time-optimal projection: the
 // constraints are met by giving up α̈ first, as in the 2-variable LPs (4.14).
 constexpr double kOutputWeight = 1e4;

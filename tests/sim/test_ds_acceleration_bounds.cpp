@@ -241,3 +241,45 @@ TEST_CASE("Fig. 4.5 study: a (4.28) through the gait's own cycle, the cycle insi
 }
 
 }  // namespace gaitopt::test
+
+#include "gaitopt/sim/hybrid_walk.hpp"
+
+namespace gaitopt::test {
+
+TEST_CASE("Closed-loop time-optimal DS control brakes at the LP bound, then rides the cycle",
+          "[stability][ds_bounds]") {
+  const DefaultGait f;
+  const GaitMotion<double>& mo = f.evaluation.motion;
+  WalkRequest req;
+  req.steps = 1;
+  configureForGait(f.gait.options, req);
+  req.ds_control = DsAlphaControl::TimeOptimal;
+  req.dalphad0 = -0.03;  // faster than the cycle: touchdown too fast, (4.1) brakes
+  req.sample_rate = lightTests() ? 2000.0 : 10000.0;
+  const WalkResult r = simulateWalk(f.evaluation, f.model, f.model, req);
+  INFO(r.message);
+  REQUIRE(r.outcome == WalkOutcome::Completed);
+  const DsLimits l{f.gait.options.friction_coefficient, 0.0, f.gait.options.full_torque_envelope};
+  int at_bound = 0, ds = 0;
+  for (const WalkSample& s : r.samples) {
+    if (s.single_support) continue;
+    ++ds;
+    const DsAccelerationBounds b = dsAccelerationBounds(f.model, mo, l, s.q(0), s.qd(0));
+    REQUIRE(b.defined);
+    const double gap = cyclicDsAlpha(mo, s.q(0)).alphad - s.qd(0);  // > 0: too fast
+    INFO("alpha " << s.q(0) << ", alphadd " << s.qdd(0) << " in [" << b.min << ", " << b.max
+                  << "], gap " << gap);
+    CHECK(s.qdd(0) <= b.max + 1e-3 * std::abs(b.max));
+    CHECK(gap >= -1e-9);  // never overshoots to the slow side
+    if (gap * kTimeOptimalGain > b.max - cyclicDsAlpha(mo, s.q(0)).slope * s.qd(0)) {
+      CHECK(s.qdd(0) == Approx(b.max).epsilon(1e-3));
+      ++at_bound;
+    }
+  }
+  CHECK(at_bound >= 1);
+  CHECK(ds > at_bound);
+  // Lift-off on the cycle: α̇_iSS of the gait.
+  CHECK(r.qd_end(0) == Approx(mo.alphadot_iSS).epsilon(1e-6));
+}
+
+}  // namespace gaitopt::test

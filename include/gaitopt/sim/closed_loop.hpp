@@ -39,6 +39,12 @@ enum class DsAlphaControl {
 };
 const char* toString(DsAlphaControl c);  // cubic | time_optimal
 
+// Gain k [1/s] of the time-optimal law (4.1) near the cyclic curve: off the curve by more than
+// (α̈_max − α̈_c)/k the demanded α̈ is the exact bound of the LPs (4.14) (bang-bang); within that
+// layer it is α̈_c + k (α̇_c − α̇), the regularisation of the switch that an ODE solver needs
+// (a discontinuous right-hand side would chatter on the curve).
+constexpr double kTimeOptimalGain = 400.0;
+
 struct ClosedLoopOptions {
   double bandwidth = 40.0;                  // ω [rad/s] of the critically damped outputs
   double friction_coefficient = 0.8;        // controller's cones (the gait option)
