@@ -1,13 +1,16 @@
 #!/usr/bin/python3
 """gaitopt plot zero_dynamics RUN_DIR [--out FILE]: the Poincaré maps of the zero dynamics
-(thesis §4.2.2) of `gaitopt stability`: the SS-plus-touchdown map a: α̇_iSS → α̇_iDS (the "a"
-curve of Fig. 4.5; the DS bound curves of the time-optimal law are not computed), the map of
-α̇_iDS (Fig. 4.6) and of α̇_iSS (Fig. 4.7) with the identity, the fixed point and the regions of
-attraction in one step and within the study's step limit.
+(thesis §4.2.2) of `gaitopt stability`: Fig. 4.5 — the SS-plus-touchdown map a: α̇_fDS = α̇_iSS →
+α̇_iDS (closed loop, and (4.28)) between the two bound curves of the time-optimal DS law (the
+fastest and slowest α̇_iDS that reach the DS end at α̇_fDS, integrated with α̈_max and α̈_min),
+the map of α̇_iDS (Fig. 4.6) and of α̇_iSS (Fig. 4.7) with the identity, the fixed point and the
+regions of attraction in one step and within the study's step limit.
 
 Reads RUN_DIR/zero_dynamics_map.csv (alphad_iSS, alphad_iDS, next_alphad_iSS, next_alphad_iDS,
-steps_to_cycle, outcome) and RUN_DIR/stability.json (zero_dynamics). Like the thesis, the axes
-show −α̇ [rad/s] (positive when walking forward). Starts that fall are marked with crosses.
+steps_to_cycle, outcome), RUN_DIR/stability.json (zero_dynamics) and, when the gait has a double
+support, RUN_DIR/ds_bounds.csv (alphad_fDS, alphad_iDS_braking, alphad_iDS_speeding_up, a,
+cycle_exists, ...). Like the thesis, the axes show −α̇ [rad/s] (positive when walking forward).
+Starts that fall are marked with crosses.
 """
 import json
 import os
@@ -19,6 +22,7 @@ import _common as c
 
 KIND = "zero_dynamics"
 COLUMNS = ["alphad_iSS", "alphad_iDS", "next_alphad_iSS", "next_alphad_iDS", "steps_to_cycle", "outcome"]
+BOUND_COLUMNS = ["alphad_fDS", "alphad_iDS_braking", "alphad_iDS_speeding_up", "a", "cycle_exists"]
 
 
 def stability_run(run_dir):
@@ -40,6 +44,30 @@ def stability_run(run_dir):
     except (OSError, ValueError, KeyError) as e:
         c.fail(KIND, f"{json_path}: no zero_dynamics object ({e})")
     return table, study
+
+
+def ds_bounds(run_dir):
+    """The Fig. 4.5 table, or None for a gait without double support (no ds_bounds.csv)."""
+    path = os.path.join(run_dir, "ds_bounds.csv")
+    if not os.path.exists(path):
+        return None
+    table = c.read_csv(KIND, path, key="alphad_fDS")
+    c.require_columns(KIND, path, table, BOUND_COLUMNS)
+    return table
+
+
+def bound_curves(ax, bounds):
+    """Fig. 4.5: between the curves, the DS starts that reach (alpha_fDS, alphad_fDS)."""
+    x = -bounds["alphad_fDS"]
+    fast, slow = -bounds["alphad_iDS_braking"], -bounds["alphad_iDS_speeding_up"]
+    ax.fill_between(x, slow, fast, where=np.isfinite(fast) & np.isfinite(slow), color="#fde8c8",
+                    zorder=0, label=r"$S_d$ at $\alpha_{iDS}$ (reaches the DS end)")
+    ax.plot(x, fast, "-", color="C3", lw=1.5, label=r"braking ($\ddot\alpha_{max}$): fastest start")
+    ax.plot(x, slow, "-", color="C0", lw=1.5, label=r"speeding up ($\ddot\alpha_{min}$): slowest start")
+    ax.plot(x, -bounds["a"], ":", color="k", lw=1.5, label="a by (4.28)")
+    exists = bounds["cycle_exists"] > 0.5
+    if exists.any():
+        ax.plot(x[exists], -bounds["a"][exists], "|", color="C2", ms=8, label="cyclic motion exists (Th. 3)")
 
 
 def shade(ax, study):
@@ -72,12 +100,16 @@ def map_panel(ax, x, y, failed, title, name, study=None, identity=True):
 def main(argv):
     run_dir, out = c.parse_args(KIND, __doc__.splitlines()[0], argv)
     table, study = stability_run(run_dir)
+    bounds = ds_bounds(run_dir)
     failed = table["outcome"] != "completed"
     fig, (ax_a, ax_ds, ax_ss) = c.figure(1, 3)
+    if bounds is not None:
+        bound_curves(ax_a, bounds)
     map_panel(ax_a, table["alphad_iSS"], table["alphad_iDS"], failed, r"$a$: SS + touchdown", "iSS",
               identity=False)
     ax_a.set_ylabel(r"$-\dot\alpha_{iDS}(k)$ [rad/s]")
-    ax_a.set_title("SS + touchdown map (the a of Fig. 4.5)", fontsize="medium")
+    ax_a.set_title("SS + touchdown map a and the DS bounds (Fig. 4.5)" if bounds is not None
+                   else "SS + touchdown map (the a of Fig. 4.5)", fontsize="medium")
     map_panel(ax_ds, table["alphad_iDS"], table["next_alphad_iDS"], failed, "step map", "iDS")
     ax_ds.set_ylabel(r"$-\dot\alpha_{iDS}(k+1)$ [rad/s]")
     ax_ds.set_title(r"map of $\dot\alpha_{iDS}$ (Fig. 4.6)", fontsize="medium")

@@ -148,4 +148,16 @@ std::function<void(const std::string&, const GaitParameters&, int)> OptimizeProg
   };
 }
 
+void addDsControlOption(CLI::App* cmd, std::string& target) {
+  cmd->add_option("--ds-control", target,
+                  "DS control of alpha: cubic, time_optimal (the bang-bang law (4.1) on the "
+                  "exact bounds of the LPs (4.14))")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"cubic", "time_optimal"}));
+}
+
+DsAlphaControl dsAlphaControlOf(const std::string& name) {
+  return name == "cubic" ? DsAlphaControl::Cubic : DsAlphaControl::TimeOptimal;
+}
+
 }  // namespace gaitopt::cli

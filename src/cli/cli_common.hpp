@@ -9,6 +9,7 @@
 #include <string>
 
 #include "gaitopt/opt/optimizer.hpp"
+#include "gaitopt/sim/closed_loop.hpp"
 #include "gaitopt/opt/gait_problem.hpp"
 
 namespace gaitopt::cli {
@@ -49,6 +50,10 @@ std::string progressText(const GaitEvaluator& evaluator, const GaitEvaluation<do
                          Criterion c);
 
 // "elapsed 12.3 s, remaining ~45.6 s" after `done` of `total` items in `elapsed_s` seconds.
+// `--ds-control cubic|time_optimal` (simulate, stability) into `target`.
+void addDsControlOption(CLI::App* cmd, std::string& target);
+DsAlphaControl dsAlphaControlOf(const std::string& name);
+
 std::string elapsedAndRemaining(double elapsed_s, int done, int total);
 
 // How progress lines are shown: on a terminal one line updated in place per stage (`auto`),

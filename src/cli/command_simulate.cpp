@@ -193,9 +193,7 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
                   "double_support (plastic impact, both feet held), algebraic, differential")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "none", "double_support", "algebraic", "differential"}));
-  cmd->add_option("--ds-control", args->ds_control, "DS control of alpha: cubic, time_optimal")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"cubic", "time_optimal"}));
+  addDsControlOption(cmd, args->ds_control);
   cmd->add_option("--ground-mu", args->ground_mu,
                   "Friction coefficient of the plant's ground (slip checks, impacts); default: "
                   "the gait's friction_coefficient")
@@ -212,8 +210,7 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
     configureForGait(gait.options, req);
     if (args->ground_mu >= 0.0) req.plant_friction_coefficient = args->ground_mu;
     req.torque_limits = !args->no_torque_limits;
-    req.ds_control = args->ds_control == "cubic" ? DsAlphaControl::Cubic
-                                                 : DsAlphaControl::TimeOptimal;
+    req.ds_control = dsAlphaControlOf(args->ds_control);
     const Model controller = buildModel(gait.robot, gait.model_options);
     const Model plant =
         args->plant.empty() ? controller : buildModel(loadRobot(args->plant), gait.model_options);

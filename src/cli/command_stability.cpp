@@ -13,6 +13,7 @@
 #include "gaitopt/io/atomic_file.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/io/json_writer.hpp"
+#include "gaitopt/sim/ds_convergence_zone.hpp"
 #include "gaitopt/sim/impact_touchdown.hpp"
 #include "gaitopt/sim/poincare_sensitivity.hpp"
 #include "gaitopt/sim/stability_margins.hpp"
@@ -24,9 +25,9 @@ namespace {
 namespace fs = std::filesystem;
 
 struct StabilityArgs {
-  std::string gait, out, jacobian = "sensitivity";
-  double step = 1e-4, bandwidth = 40.0, range = 0.05;
-  int points = 51;
+  std::string gait, out, jacobian = "sensitivity", ds_control = "cubic";
+  double step = 1e-4, bandwidth = 40.0, range = 0.05, ds_range = 0.5;
+  int points = 51, ds_points = 41;
   int margin_steps = 5;
 };
 
@@ -51,6 +52,46 @@ void writeZeroDynamics(JsonWriter& w, const ZeroDynamicsStudy& z, int max_steps)
   w.key("global_region").value(Eigen::Vector2d(z.global_low, z.global_high));
   w.key("global_max_steps").value(max_steps);
   w.key("resolution").value(z.resolution);
+  w.endObject();
+}
+
+// Fig. 4.5: per α̇_fDS the zone's ends at α_iDS and a (4.28).
+std::string dsBoundsCsv(const DsZoneStudy& z) {
+  std::ostringstream o;
+  o << "alphad_fDS,alphad_iDS_braking,alphad_iDS_speeding_up,a,braking_end,speeding_up_end,"
+       "cycle_exists,cycle_stable\n";
+  auto num = [](double v) { return std::isnan(v) ? std::string() : formatDouble(v); };
+  for (const DsZoneRow& r : z.rows)
+    o << formatDouble(r.alphad_fDS) << ',' << num(r.fastest_iDS) << ',' << num(r.slowest_iDS)
+      << ',' << num(r.a) << ',' << r.braking_end << ',' << r.speeding_up_end << ','
+      << r.cycle_exists << ',' << r.cycle_stable << '\n';
+  return o.str();
+}
+
+void writeDsZone(JsonWriter& w, const DsZoneStudy& z, const DsLimits& l) {
+  w.key("ds_time_optimal").beginObject();
+  w.key("model").value("perfect tracking of delta1,2(alpha) in DS (H1-H3), LPs (4.14)");
+  w.key("friction_coefficient").value(l.friction_coefficient);
+  w.key("min_normal_force").value(l.min_normal_force);
+  w.key("full_torque_envelope").value(l.full_torque_envelope);
+  w.key("alpha_iDS").value(z.alpha_iDS);
+  w.key("alpha_fDS").value(z.alpha_fDS);
+  w.key("cycle_alphad_iDS").value(z.cycle_alphad_iDS);
+  w.key("cycle_alphad_fDS").value(z.cycle_alphad_fDS);
+  w.key("cycle_fastest_alphad_iDS").value(z.cycle.fastest_iDS);
+  w.key("cycle_slowest_alphad_iDS").value(z.cycle.slowest_iDS);
+  w.key("cycle_braking_end").value(z.cycle.braking_end);
+  w.key("cycle_speeding_up_end").value(z.cycle.speeding_up_end);
+  w.key("cycle_in_zone").value(z.cycle_in_zone);
+  w.key("cycle_strictly_inside").value(z.cycle_strictly_inside);
+  w.key("one_step_region_alphad_iDS")
+      .value(Eigen::Vector2d(z.cycle.fastest_iDS, z.cycle.slowest_iDS));
+  w.key("cycle_braking_margin").value(z.cycle_braking_margin);
+  w.key("cycle_speeding_up_margin").value(z.cycle_speeding_up_margin);
+  w.key("from_rest_end").value(z.from_rest.end);
+  w.key("from_rest_end_alphad").value(z.from_rest.end_alphad);
+  w.key("existence_region_alphad_fDS").value(Eigen::Vector2d(z.existence_low, z.existence_high));
+  w.key("ss_upper_bound_checked").value(false);
   w.endObject();
 }
 
@@ -121,8 +162,9 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
       "stability",
       "Poincare analysis of the closed-loop gait (gaitopt simulate's controller): fixed point, "
       "Jacobian on all DOF (variational equations or central differences), eigenvalues, power iteration (4.61), and the "
-      "1-D map of alphad at SS start. Writes OUT/stability.json, jacobian.csv, "
-      "zero_dynamics_map.csv. Exit 3 if the cycle is unstable or not a fixed point.");
+      "1-D map of alphad at SS start, the DS convergence zone of the time-optimal law (Fig. "
+      "4.5). Writes OUT/stability.json, jacobian.csv, zero_dynamics_map.csv, ds_bounds.csv. "
+      "Exit 3 if the cycle is unstable or not a fixed point.");
   cmd->add_option("--gait", a->gait, "Gait YAML file")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out", a->out, "Output directory")->required();
   cmd->add_option("--jacobian", a->jacobian,
@@ -148,6 +190,14 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--map-points", a->points, "Points of the 1-D map")
       ->capture_default_str()
       ->check(CLI::Range(2, 10001));
+  addDsControlOption(cmd, a->ds_control);
+  cmd->add_option("--ds-range", a->ds_range,
+                  "Relative alphad_fDS range of the DS convergence-zone study (Fig. 4.5, +-)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.95));
+  cmd->add_option("--ds-points", a->ds_points, "Points of the DS convergence-zone study")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 10001));
   cmd->callback([a, &exit_code]() {
     const GaitFile gait = loadGaitFile(a->gait);
     requireDirectoryOrAbsent(a->out);
@@ -161,6 +211,7 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
     const Model model = buildModel(gait.robot, gait.model_options);
     WalkRequest req;
     req.bandwidth = a->bandwidth;
+    req.ds_control = dsAlphaControlOf(a->ds_control);
     configureForGait(gait.options, req);
     req.tolerances = {1e-12, 1e-14};  // the map's noise must stay far below the FD step
     // The linearisation needs a smooth field: the unsaturated controller (the projection on
@@ -188,6 +239,13 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
     zr.points = a->points;
     zr.touchdown = td;
     const ZeroDynamicsStudy zd = studyZeroDynamics(e, model, model, analysis, zr);
+    const bool has_ds = gait.options.parameterisation.hasDoubleSupport();
+    const DsLimits limits = dsLimitsOf(gait.options);
+    std::vector<double> grid;
+    for (int i = 0; has_ds && i < a->ds_points; ++i)
+      grid.push_back(e.motion.ds_alpha(e.motion.T_DS).first *
+                     (1.0 + a->ds_range * (2.0 * i / (a->ds_points - 1) - 1.0)));
+    const DsZoneStudy dz = has_ds ? studyDsZone(model, e.motion, limits, grid) : DsZoneStudy{};
 
     JsonWriter w;
     w.beginObject();
@@ -198,6 +256,7 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
     w.key("jacobian_method").value(a->jacobian);
     w.key("fd_step").value(a->step);
     w.key("bandwidth").value(a->bandwidth);
+    w.key("ds_control").value(a->ds_control);
     w.key("eigenvalues_real").value(Eigen::VectorXd(L.eigenvalues.real()));
     w.key("eigenvalues_imag").value(Eigen::VectorXd(L.eigenvalues.imag()));
     w.key("dominant_modulus").value(std::abs(L.eigenvalues(0)));
@@ -212,6 +271,10 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
     w.key("saturated_samples_on_cycle").value(saturatedOnCycle(
         e, model, req, x, gaitTouchdown(gait.options, "auto", gait.options.friction_coefficient)));
     writeZeroDynamics(w, zd, zr.max_steps);
+    if (has_ds)
+      writeDsZone(w, dz, limits);
+    else
+      w.key("ds_time_optimal").null();  // no double support
     writeMargins(w, gait, e, model, req, a->margin_steps);
     w.endObject();
     const fs::path dir(a->out);
@@ -219,6 +282,7 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
     writeFileAtomically((dir / "stability.json").string(), w.str() + "\n");
     writeFileAtomically((dir / "jacobian.csv").string(), matrixCsv(L.jacobian));
     writeFileAtomically((dir / "zero_dynamics_map.csv").string(), mapCsv(zd));
+    if (has_ds) writeFileAtomically((dir / "ds_bounds.csv").string(), dsBoundsCsv(dz));
     const bool stable = std::abs(L.eigenvalues(0)) < 1.0 && L.fixed_point_residual < 1e-6;
     std::cout << "stability: dominant |eigenvalue| " << shortNumber(std::abs(L.eigenvalues(0)))
               << ", power iteration " << shortNumber(power) << ", fixed-point residual "

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "gaitopt/gait/ds_force_distribution.hpp"
@@ -11,6 +12,7 @@
 #include "gaitopt/model/forward_dynamics.hpp"
 #include "gaitopt/model/inverse_dynamics.hpp"
 #include "gaitopt/model/torque_envelope.hpp"
+#include "gaitopt/sim/ds_acceleration_bounds.hpp"
 
 namespace gaitopt {
 namespace {
@@ -155,24 +157,9 @@ Vec4 ssControl(const ClosedLoop& s, const Vec5& q, const Vec5& qd, ClosedLoopPoi
   return response(p.v).gamma_star;
 }
 
-// Gain [1/s] of the time-optimal DS control's approach to the cyclic curve: the saturated
-// high-gain form of the bang-bang law (4.1), its α̈ held within [α̈_min, α̈_max] by (4.60).
-constexpr double kTimeOptimalGain = 400.0;
 // Weight of the δ1, δ2 output accelerations against α̈ in the time-optimal projection: the
 // constraints are met by giving up α̈ first, as in the 2-variable LPs (4.14).
 constexpr double kOutputWeight = 1e4;
-
-// The cyclic DS curve α̇_c(α), α̈_c(α) of the gait, from its cubic α_c(t) (§4.2.1): t_c(α) by
-// bisection (α_c is monotone), clamped to [0, T_DS].
-PolyValue<double> cyclicAlpha(const GaitMotion<double>& mo, double alpha) {
-  double lo = 0.0, hi = mo.T_DS;
-  const bool decreasing = mo.ds_alpha(hi).value < mo.ds_alpha(lo).value;
-  for (int k = 0; k < 60; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    ((mo.ds_alpha(mid).value > alpha) == decreasing ? lo : hi) = mid;
-  }
-  return mo.ds_alpha(0.5 * (lo + hi));
-}
 
 // DS inputs v = (α̈, ÿ1, ÿ2, R2x) → (α̈, δ̈1, δ̈2) = T v.head(3) + b, with their desired values.
 struct DsInputs {
@@ -204,16 +191,20 @@ DsInputs cubicDsInputs(const ClosedLoop& s, const DsReference& ds, double t, con
 // y = δ − δ_d(α) of the measured α driven to 0 (PD, v = ÿ).
 DsInputs timeOptimalDsInputs(const ClosedLoop& s, const Vec5& q, const Vec5& qd, Vec4& error) {
   const GaitMotion<double>& mo = s.motion;
-  const PolyValue<double> c = cyclicAlpha(mo, q(0));
+  const CyclicDsPoint c = cyclicDsAlpha(mo, q(0));
   const PolyValue<double> d1 = mo.ds_delta1(q(0)), d2 = mo.ds_delta2(q(0));
   const Eigen::Vector2d y(q(1) - d1.value, q(2) - d2.value);
   const Eigen::Vector2d yd(qd(1) - d1.first * qd(0), qd(2) - d2.first * qd(0));
-  error << c.first - qd(0), y, 0.0;
+  error << c.alphad - qd(0), y, 0.0;
   const double w = s.options.bandwidth;
+  // The bounds at (α, α̇) with the contact rows of the projection (4.60) (R_min = 0).
+  const DsAccelerationBounds b = dsAccelerationBounds(
+      s.controller, mo, {s.options.friction_coefficient, 0.0, s.options.full_torque_envelope},
+      q(0), qd(0));
+  double alphadd = c.slope * qd(0) + kTimeOptimalGain * (c.alphad - qd(0));  // α̈_c on the curve
+  if (b.defined) alphadd = std::clamp(alphadd, b.min, b.max);                // (4.1)
   DsInputs in;
-  // α̈_c along the curve is dα̇_c/dα · α̇ = (α̈_c(t)/α̇_c(t)) α̇.
-  in.v_d << c.second / c.first * qd(0) + kTimeOptimalGain * (c.first - qd(0)),
-      Eigen::Vector2d(-w * w * y - 2.0 * w * yd);
+  in.v_d << alphadd, Eigen::Vector2d(-w * w * y - 2.0 * w * yd);
   in.T.block<2, 1>(1, 0) << d1.first, d2.first;
   in.b << 0.0, d1.second * qd(0) * qd(0), d2.second * qd(0) * qd(0);
   in.weights << 1.0, kOutputWeight, kOutputWeight, kR2xWeight;

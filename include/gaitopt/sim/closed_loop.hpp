@@ -34,10 +34,16 @@ const char* outcomeName(WalkOutcome o);
 
 enum class DsAlphaControl {
   Cubic,        // α_r(t): cubic from the touchdown state to (α_fDS, α̇_iSS) over T_DS
-  TimeOptimal,  // (4.1): to the cyclic curve α̇_c(α) at the largest α̈ the constraints allow
-                // (saturated high gain; the projection gives the bounds); ends at α_fDS
+  TimeOptimal,  // (4.1): bang-bang at the exact α̈_min/α̈_max of the LPs (4.14) towards the
+                // cyclic curve α̇_c(α), then along it (sim/ds_acceleration_bounds.hpp); ends at α_fDS
 };
 const char* toString(DsAlphaControl c);  // cubic | time_optimal
+
+// Gain k [1/s] of the time-optimal law (4.1) near the cyclic curve: off the curve by more than
+// (α̈_max − α̈_c)/k the demanded α̈ is the exact bound of the LPs (4.14) (bang-bang); within that
+// layer it is α̈_c + k (α̇_c − α̇), the regularisation of the switch that an ODE solver needs
+// (a discontinuous right-hand side would chatter on the curve).
+constexpr double kTimeOptimalGain = 400.0;
 
 struct ClosedLoopOptions {
   double bandwidth = 40.0;                  // ω [rad/s] of the critically damped outputs
