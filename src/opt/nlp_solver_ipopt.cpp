@@ -290,6 +290,10 @@ NlpSolution solveWithIpopt(NlpProblem& problem, const NlpSettings& settings) {
     o.SetStringValue("mu_strategy", "monotone");
     o.SetNumericValue("constr_mult_init_max", 0.0);
     o.SetIntegerValue("acceptable_iter", 0);
+    // The KKT system (every grid entry, a dense Jacobian) costs ~90 % of Ipopt's time, in
+    // MUMPS: no residual check and iterative refinement after each solve. Measured on the
+    // default problem: same iterations and optimum, 28 % less CPU time (README).
+    o.SetStringValue("fast_step_computation", "yes");
   }
   if (!settings.warm_start.empty()) {
     // Start at the given primal-dual point, not pushed into the interior nor re-initialised:
