@@ -4,7 +4,7 @@
 // equal finite differences.
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <unsupported/Eigen/AutoDiff>
+#include <type_traits>
 
 #include "gaitopt/gait/leg_geometry.hpp"
 #include "gaitopt/gait/path_curve.hpp"
