@@ -3,12 +3,16 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace gaitopt {
 namespace {
 
 constexpr int kMaxNewtonSteps = 6;
+constexpr int kMaxHalvings = 12;
+// Scaled gradient norm below which an active row is taken as not movable.
+constexpr double kDegenerateRow = 1e-8;
 // Rows met to this (scaled) are solved: Newton converges quadratically from 1e-4.
 constexpr double kNewtonResidual = 1e-11;
 
@@ -32,17 +36,23 @@ void growActiveSet(const GaitEvaluator& ev, const GaitEvaluation<double>& e, dou
 ActiveSystem activeSystem(const GaitEvaluator& ev, const GaitGradient& gr,
                           const std::vector<int>& active, const std::optional<double>& speed,
                           const GaitParameters& D, double interior) {
-  const int rows = static_cast<int>(active.size()) + (speed ? 1 : 0);
-  ActiveSystem s{MatrixX(rows, D.size()), VectorX(rows), static_cast<int>(active.size())};
-  for (int i = 0; i < s.inequalities; ++i) {
-    const double scale = constraintScale(ev.layout(), ev.model(), active[i]);
-    s.r(i) = gr.value.g[active[i]] / scale + interior;
-    s.J.row(i) = gr.dg.row(active[i]).cwiseProduct(D.transpose()) / scale;
+  ActiveSystem s{MatrixX(active.size() + 1, D.size()), VectorX(active.size() + 1), 0};
+  for (int k : active) {
+    const double scale = constraintScale(ev.layout(), ev.model(), k);
+    s.J.row(s.inequalities) = gr.dg.row(k).cwiseProduct(D.transpose()) / scale;
+    // A row that does not move to first order (a friction-cone or force entry identically at
+    // its bound where the DS distribution is clamped) would ask for an unbounded step; it
+    // stays as it is, and the feasibility check still sees it.
+    if (s.J.row(s.inequalities).norm() < kDegenerateRow) continue;
+    s.r(s.inequalities++) = gr.value.g[k] / scale + interior;
   }
+  int rows = s.inequalities;
   if (speed) {
-    s.r(rows - 1) = gr.value.speed - *speed;
-    s.J.row(rows - 1) = gr.dspeed.cwiseProduct(D).transpose();
+    s.r(rows) = gr.value.speed - *speed;
+    s.J.row(rows++) = gr.dspeed.cwiseProduct(D).transpose();
   }
+  s.J.conservativeResize(rows, Eigen::NoChange);
+  s.r.conservativeResize(rows);
   return s;
 }
 
@@ -54,6 +64,36 @@ bool meets(const GaitEvaluator& ev, const GaitEvaluation<double>& e,
         e.g[k] / constraintScale(ev.layout(), ev.model(), k) > tol)
       return false;
   return true;
+}
+
+// Largest violation of the levels 0–5 (scaled, beyond −interior) and of the speed; infinite
+// where the motion cannot be computed.
+double violation(GaitEvaluationCache& cache, const GaitParameters& x,
+                 const std::optional<double>& speed, double interior) {
+  const GaitEvaluator& ev = cache.evaluator();
+  const GaitEvaluation<double>& e = cache.values(x);
+  if (!e.motion_computed) return std::numeric_limits<double>::infinity();
+  double worst = speed ? std::abs(e.speed - *speed) : 0.0;
+  for (int k : hierarchyEntries(ev.layout(), 5))
+    if (e.state[k] != ConstraintState::NotComputed)
+      worst = std::max(worst, e.g[k] / constraintScale(ev.layout(), ev.model(), k) + interior);
+  return worst;
+}
+
+// Backtracking on the Newton step dx (halved up to kMaxHalvings times) until the largest
+// violation decreases: the linearisation holds only near x, and a row with a small gradient
+// can ask for a long minimum-norm step.
+bool takeStep(GaitEvaluationCache& cache, const GaitParameters& dx,
+              const std::optional<double>& speed, double interior, GaitParameters& x) {
+  const double before = violation(cache, x, speed, interior);
+  for (double t = 1.0; t > std::ldexp(1.0, -kMaxHalvings); t *= 0.5) {
+    const GaitParameters trial = x + t * dx;
+    if (violation(cache, trial, speed, interior) < before) {
+      x = trial;
+      return true;
+    }
+  }
+  return false;
 }
 
 // Least-squares multipliers of the active rows for ∇f + J_Aᵀλ = 0 (scaled parameters).
@@ -88,7 +128,7 @@ ActiveSetClosing closeActiveSet(GaitEvaluationCache& cache, const GaitParameters
       return out;
     }
     const VectorX dy = s.J.completeOrthogonalDecomposition().solve(-s.r);  // minimum norm
-    out.x = out.x + GaitParameters(dy.cwiseProduct(D));
+    if (!takeStep(cache, GaitParameters(dy.cwiseProduct(D)), speed, interior, out.x)) return out;
   }
   return out;
 }
