@@ -207,6 +207,13 @@ TEST_CASE("parameterisation basis key: read, written back, bad value named", "[g
   CHECK(b.label() == "miossec+ss5+ds2+bspline");
   CHECK_FALSE(b.isThesis());
   CHECK(parse("parameterisation: {ss_points: 1, basis: polynomial}\n").isThesis());
+  GaitOptions o;
+  o.parameterisation = b;
+  const std::string written = gaitYaml("robot.yaml", GaitParameters::Zero(b.size()), o, {});
+  CHECK(written.find("parameterisation: {ss_points: 5, ds_points: 2, basis: bspline}") !=
+        std::string::npos);
+  CHECK(parse(written.substr(written.find("parameterisation:"))
+                  .substr(0, written.substr(written.find("parameterisation:")).find('\n') + 1)) == b);
   try {
     parse("parameterisation: {ss_points: 3, basis: nurbs}\n");
     FAIL("no error");
