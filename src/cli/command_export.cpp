@@ -85,6 +85,13 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"stop", "none"}));
   cmd->callback([args, &exit_code]() {
     const GaitFile gait = loadGaitFile(args->gait);
+    // The JSON export writes each virtual constraint as one polynomial; a B-spline is piecewise.
+    if (args->format == "json" && gait.options.parameterisation.basis == PathBasis::BSpline) {
+      std::cerr << "gaitopt: error: " << args->gait << ": parameterisation.basis: the JSON "
+                << "controller export needs 'polynomial', got 'bspline' (use --format csv)\n";
+      exit_code = kExitBadInput;
+      return;
+    }
     requireFileOutput(args->out);
     const GaitEvaluator evaluator(gait.robot, gait.options, gait.model_options);
     const GaitEvaluation<double> e = evaluator.evaluate(gait.parameters);

@@ -123,7 +123,9 @@ void writePolynomial(JsonWriter& w, const std::string& name, const std::vector<d
 
 // φ_j of the SS outputs as polynomials of α (φ = D_Γᵀ q is linear in δ1..δ4).
 std::array<LocalPolynomial<double>, 4> ssMotorPolynomials(const GaitMotion<double>& mo) {
-  const auto& p = mo.ss_path;  // δ1..δ4(α), all with x0 = α_iSS
+  // δ1..δ4(α), all with x0 = α_iSS (polynomial basis only: a B-spline path throws)
+  const std::array<LocalPolynomial<double>, 4> p{mo.ss_path[0].polynomial(), mo.ss_path[1].polynomial(),
+                                                 mo.ss_path[2].polynomial(), mo.ss_path[3].polynomial()};
   LocalPolynomial<double> hip2 = p[1];
   hip2.c.resize(std::max(p[1].c.size(), p[2].c.size()), 0.0);
   for (std::size_t k = 0; k < p[2].c.size(); ++k) hip2.c[k] += p[2].c[k];
@@ -165,9 +167,9 @@ void writeDsPhase(JsonWriter& w, const GaitMotion<double>& mo) {
   w.key("alpha_end").value(alpha_f);
   writePolynomial(w, "alpha_of_tau", normalisedMonomials(mo.ds_alpha, mo.T_DS));
   w.key("outputs").beginObject();
-  LocalPolynomial<double> hip = mo.ds_delta2;
+  LocalPolynomial<double> hip = mo.ds_delta2.polynomial();
   for (double& c : hip.c) c = -c;
-  writePolynomial(w, "phi_knee_front", normalisedMonomials(mo.ds_delta1, alpha_f - alpha_i));
+  writePolynomial(w, "phi_knee_front", normalisedMonomials(mo.ds_delta1.polynomial(), alpha_f - alpha_i));
   writePolynomial(w, "phi_hip_front", normalisedMonomials(hip, alpha_f - alpha_i));
   w.endObject();
   w.key("closed_chain").value("phi_hip_rear and phi_knee_rear follow from the rear leg's "

@@ -77,6 +77,7 @@ std::string Parameterisation::label() const {
     s += "+ss" + std::to_string(ss_points) + "+ds" + std::to_string(ds_points);
   if (landing == Landing::ImpactSingleSupport) s += "+impact_ss";
   if (landing == Landing::ImpactDoubleSupport) s += "+impact_ds";
+  if (basis == PathBasis::BSpline) s += "+bspline";
   return s;
 }
 

@@ -112,6 +112,12 @@ Parameterisation parseParameterisation(const YamlMap& doc, Landing landing) {
   };
   par.ss_points = count("ss_points", 1);
   par.ds_points = count("ds_points", 0);
+  if (m.has("basis")) {
+    const std::string basis = m.string("basis");
+    if (basis != "polynomial" && basis != "bspline")
+      throw m.error("basis", "expected 'polynomial' or 'bspline', got '" + basis + "'");
+    par.basis = basis == "bspline" ? PathBasis::BSpline : PathBasis::Polynomial;
+  }
   m.rejectUnknownKeys();
   if (par.ss_points % 2 == 0)
     throw m.error("ss_points", "must be odd (the middle point is the thesis' alpha_int), got " +
@@ -242,7 +248,7 @@ std::string gaitYaml(const std::string& robot_path_relative, const GaitParameter
   out << "robot: " << yamlString(robot_path_relative) << "  # relative to this file\n";
   if (!par.isThesis())
     out << "parameterisation: {ss_points: " << par.ss_points << ", ds_points: " << par.ds_points
-        << "}\n";
+        << (par.basis == PathBasis::BSpline ? ", basis: bspline" : "") << "}\n";
   out << "parameters:\n";
   const std::vector<std::string> names = par.names();
   for (int i = 0; i < par.size(); ++i) out << "  " << names[i] << ": " << formatDouble(p(i)) << '\n';

@@ -11,10 +11,6 @@ GaitParameters toParameters(const VectorX& x) { return GaitParameters(x); }
 
 bool motionAvailable(const GaitEvaluation<double>& e) { return e.motion_computed; }
 
-const GaitParameters& criterionGradient(const GaitGradient& g, Criterion c) {
-  return c == Criterion::Torque ? g.dC_Gamma : c == Criterion::Energy ? g.dC_E : g.dW;
-}
-
 class CriterionCost : public CostTerm {
  public:
   CriterionCost(GaitEvaluationCache& cache, Criterion c, double scale)
@@ -135,6 +131,10 @@ class SpeedConstraint : public ConstraintSet {
 
 double criterionValue(const GaitEvaluation<double>& e, Criterion c) {
   return c == Criterion::Torque ? e.C_Gamma : c == Criterion::Energy ? e.C_E : e.W;
+}
+
+const GaitParameters& criterionGradient(const GaitGradient& g, Criterion c) {
+  return c == Criterion::Torque ? g.dC_Gamma : c == Criterion::Energy ? g.dC_E : g.dW;
 }
 
 // Typical magnitude of each constraint group's values (so Ipopt sees O(1) rows).

@@ -8,6 +8,7 @@
 
 #include "gaitopt/gait/constraints.hpp"
 #include "gaitopt/gait/impact_landing.hpp"
+#include "gaitopt/gait/path_curve.hpp"
 #include "gaitopt/gait/polynomials.hpp"
 #include "gaitopt/math/types.hpp"
 
@@ -18,8 +19,8 @@ template <class S> struct GaitMotion {
   Vector5<S> q_iDS, q_fDS, q_iSS, q_fSS;
   S alpha_iSS = S(0.0), alpha_fSS = S(0.0);
   std::vector<Vector5<S>> q_ss_points;  // interior SS configurations (α_int for the thesis)
-  std::array<LocalPolynomial<S>, 4> ss_path;  // δ1..δ4 as functions of α (3.2)
-  LocalPolynomial<S> ds_delta1, ds_delta2;    // δ1, δ2 as functions of α (3.3)
+  std::array<PathCurve<S>, 4> ss_path;  // δ1..δ4 as functions of α (3.2)
+  PathCurve<S> ds_delta1, ds_delta2;    // δ1, δ2 as functions of α (3.3)
   LocalPolynomial<S> ds_alpha;                // α as a function of t (3.4)
   S alphadot_iSS = S(0.0);                 // after the saturation (3.56)
   S f_iSS = S(0.0);                        // max(f(α_iSS), f_min)

@@ -189,8 +189,8 @@ template <class S> void buildSsPaths(EvalContext<S>& c, Vector5<S>& qs_iSS, Vect
   for (int j = 0; j < 4; ++j) {  // (3.25), or higher degree with more interior points
     std::vector<S> values;
     for (const Vector5<S>& q : mo.q_ss_points) values.push_back(q(j + 1));
-    mo.ss_path[j] = polynomialThrough(mo.alpha_iSS, mo.q_iSS(j + 1), qs_iSS(j + 1), alphas, values,
-                                      mo.alpha_fSS, mo.q_fSS(j + 1), qs_fSS(j + 1));
+    mo.ss_path[j] = pathThrough(par.basis, mo.alpha_iSS, mo.q_iSS(j + 1), qs_iSS(j + 1), alphas,
+                                values, mo.alpha_fSS, mo.q_fSS(j + 1), qs_fSS(j + 1));
   }
 }
 
@@ -337,10 +337,10 @@ template <class S> void dsBoundaryStage(EvalContext<S>& c, const Vector5<S>& qs_
     d1.push_back(p(i));
     d2.push_back(delta2FromTheta3(alphas.back(), p(i), p(i + 1)));
   }
-  mo.ds_delta1 = polynomialThrough(p(kAlphaIDS), p(kDelta1IDS), d1s_iDS, alphas, d1, p(kAlphaFDS),
-                                   p(kDelta1FDS), S(qs_iSS(1)));  // (3.26)
-  mo.ds_delta2 = polynomialThrough(p(kAlphaIDS), S(mo.q_iDS(2)), d2s_iDS, alphas, d2,
-                                   p(kAlphaFDS), S(mo.q_fDS(2)), S(qs_iSS(2)));
+  mo.ds_delta1 = pathThrough(par.basis, p(kAlphaIDS), p(kDelta1IDS), d1s_iDS, alphas, d1,
+                             p(kAlphaFDS), p(kDelta1FDS), S(qs_iSS(1)));  // (3.26)
+  mo.ds_delta2 = pathThrough(par.basis, p(kAlphaIDS), S(mo.q_iDS(2)), d2s_iDS, alphas, d2,
+                             p(kAlphaFDS), S(mo.q_fDS(2)), S(qs_iSS(2)));
   mo.ds_alpha = cubicHermite(S(0.0), p(kAlphaIDS), alphadot_iDS, p(kTDS), p(kAlphaFDS),
                              mo.alphadot_iSS);  // (3.27)
 }

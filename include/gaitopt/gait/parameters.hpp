@@ -47,6 +47,13 @@ enum class Landing {
   ImpactDoubleSupport,    // impact, then double support (both feet stick)
 };
 
+// How the virtual constraints pass through their end values, end slopes and interior points
+// (gait/path_curve.hpp).
+enum class PathBasis {
+  Polynomial,  // one polynomial of degree 3 + K (the thesis for K = 1)
+  BSpline,     // C² cubic B-spline with a knot at each interior point (K + 4 control points)
+};
+
 struct Parameterisation {
   // Interior SS configurations at α fractions k/(ss_points+1) of [α_iSS → α_fSS]; odd, so the
   // middle one is the thesis' α_int (parameters 7–10). 1 = the thesis (quartics).
@@ -55,9 +62,12 @@ struct Parameterisation {
   // thesis (cubics).
   int ds_points = 0;
   Landing landing = Landing::ZeroVelocity;
+  PathBasis basis = PathBasis::Polynomial;  // of the SS and DS virtual constraints
 
   int size() const { return impactSlopeIndex() + (landsWithImpact() ? 2 : 0); }
-  bool isThesis() const { return ss_points == 1 && ds_points == 0 && !landsWithImpact(); }
+  bool isThesis() const {
+    return ss_points == 1 && ds_points == 0 && !landsWithImpact() && basis == PathBasis::Polynomial;
+  }
   bool landsWithImpact() const { return landing != Landing::ZeroVelocity; }
   bool hasDoubleSupport() const { return landing != Landing::ImpactSingleSupport; }
   // First of the SS-end slopes δ3*, δ4* of a landing with impact (free: the foot arrives
@@ -77,9 +87,10 @@ struct Parameterisation {
   // First of the 2 parameters (δ1, θ3) of DS point k.
   int dsPointIndex(int k) const;
   std::vector<std::string> names() const;
-  std::string label() const;  // "miossec", "miossec+ss3+ds1", "miossec+impact_ss"
+  std::string label() const;  // "miossec", "miossec+ss3+ds1", "miossec+impact_ss", "…+bspline"
   bool operator==(const Parameterisation& o) const {
-    return ss_points == o.ss_points && ds_points == o.ds_points && landing == o.landing;
+    return ss_points == o.ss_points && ds_points == o.ds_points && landing == o.landing &&
+           basis == o.basis;
   }
 };
 

@@ -35,7 +35,8 @@ struct GaitFile {
 GaitFile loadGaitFile(const std::string& path);
 
 // The `parameterisation` key of `doc`: absent or "miossec" (the thesis' 17 parameters), or a
-// mapping {ss_points: odd ≥ 1, ds_points: ≥ 0} of interior SS/DS configurations; `landing`
+// mapping {ss_points: odd ≥ 1, ds_points: ≥ 0, basis: polynomial|bspline} of interior SS/DS
+// configurations and the curve through them (gait/path_curve.hpp); `landing`
 // comes from the options (`landing: impact`, `after_impact: single_support|double_support`).
 Parameterisation parseParameterisation(const YamlMap& doc,
                                        Landing landing = Landing::ZeroVelocity);

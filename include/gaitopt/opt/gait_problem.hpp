@@ -13,6 +13,7 @@ enum class Criterion { Torque, Energy, Work };  // C_Γ (3.28), C_E (3.32), W (3
 
 const char* criterionName(Criterion c);
 double criterionValue(const GaitEvaluation<double>& e, Criterion c);
+const GaitParameters& criterionGradient(const GaitGradient& g, Criterion c);
 
 // Box bounds that keep the parameters in the physically meaningful range (documented in the
 // README): knees within the joint limits, trunk within 1 rad of upright, 0.05 ≤ d ≤ 1 m, ...
