@@ -79,8 +79,8 @@ StepPtr restDs(const GaitEvaluation<double>& e, bool start, double v, const Rest
   // α decreases while walking: the rest is behind (start) or ahead of (stop) the junction.
   const double ar = start ? aj + x.range : aj - x.range;
   const double d2r = delta2FromTheta3(ar, x.delta1, x.theta3);
-  mo.ds_delta1 = cubicHermite(aj, d1.value, d1.first, ar, x.delta1, x.slope1);
-  mo.ds_delta2 = cubicHermite(aj, d2.value, d2.first, ar, d2r, x.slope2);
+  mo.ds_delta1 = PathCurve<double>(cubicHermite(aj, d1.value, d1.first, ar, x.delta1, x.slope1), aj, ar);
+  mo.ds_delta2 = PathCurve<double>(cubicHermite(aj, d2.value, d2.first, ar, d2r, x.slope2), aj, ar);
   const double T = x.duration * 2.0 * x.range / std::abs(v);
   mo.ds_alpha = start ? cubicHermite(0.0, ar, 0.0, T, aj, v) : cubicHermite(0.0, aj, v, T, ar, 0.0);
   mo.T_DS = T;
