@@ -207,10 +207,11 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
                       "clustered (0.1 %), the best one polished")
           ->check(CLI::Range(1, 100000))
           ->excludes(starts);
-  cmd->add_option("--seed", args->seed,
-                  "Seed of the random starts (std::mt19937_64), 0 to 2^53-1; default 1")
-      ->check(CLI::Range(std::uint64_t{0}, kMaxSeed))
-      ->needs(starts, global);
+  CLI::Option* seed =
+      cmd->add_option("--seed", args->seed,
+                      "Seed of the random starts of --random-starts or --global "
+                      "(std::mt19937_64), 0 to 2^53-1; default 1")
+          ->check(CLI::Range(std::uint64_t{0}, kMaxSeed));
   cmd->add_flag("--quiet", args->quiet, "No progress lines");
   cmd->add_flag("--verbose", args->verbose,
                 "Also the solver's own lines (scaled objective and violation)");
@@ -218,7 +219,9 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
                   "auto: on a terminal one line per stage updated in place; lines: every line")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "lines"}));
-  cmd->callback([args, &exit_code]() {
+  cmd->callback([args, &exit_code, seed, starts, global]() {
+    if (seed->count() > 0 && starts->count() == 0 && global->count() == 0)
+      throw CLI::RequiresError("--seed", "--random-starts or --global");
     // Everything that can fail on bad input happens before the output directory is touched.
     OptimizeConfig config = loadOptimizeConfig(args->config);
     StagedDirectory staged(args->out, ourOutputs(&config.solver));  // --out checked before work
