@@ -85,6 +85,7 @@ GlobalSearchResult globalSearch(const GaitEvaluator& ev, const OptimizationReque
     if (!st.skipped) {
       OptimizationRequest req = request;
       req.initial = st.start;
+      req.solver.restore_feasibility = true;
       st.result = optimizeGait(ev, req, log);
       times.push_back(st.result.wall_time_s);
     }
