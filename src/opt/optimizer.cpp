@@ -297,13 +297,9 @@ GaitParameters restoreFeasibility(GaitEvaluationCache& cache, const GaitParamete
                  })
           .x;
   if (!meetsAll(cache.evaluator(), req, cache.values(feasible))) return p;
-  // The re-solve with Ipopt, which stays strictly inside (SLSQP re-solves measured to end
-  // slightly outside again in 15 of 17 failed starts).
-  OptimizationRequest interior = req;
-  interior.solver.backend = Backend::Ipopt;
-  interior.solver.constraint_exchange = true;
+  // Re-solved with the configured backend: an Ipopt re-solve measured worse (README).
   NlpStatus again = NlpStatus::Failed;
-  const GaitParameters q = solveFullProblem(cache, feasible, interior, log, r, again);
+  const GaitParameters q = solveFullProblem(cache, feasible, req, log, r, again);
   if (meetsAll(cache.evaluator(), req, cache.values(q))) {
     status = again;
     return q;
