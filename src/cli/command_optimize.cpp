@@ -258,9 +258,7 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
       for (int k = 1; k <= args->random_starts; ++k) {
         const GaitParameters start = randomStart(initial, rng, config.options.parameterisation);
         if (log) *log << "--- random start " << k << "/" << args->random_starts << "\n";
-        OptimizationRequest request = optimizationRequest(config, start);
-        request.solver.restore_feasibility = true;  // README "Global search"
-        runs.push_back({k, optimizeGait(evaluator, request, log)});
+        runs.push_back({k, optimizeGait(evaluator, optimizationRequest(config, start), log)});
         progress_lines.endLine();
         if (log) {
           const double elapsed =

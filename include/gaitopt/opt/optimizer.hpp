@@ -37,7 +37,8 @@ struct SolverSettings {
   // When the full stage still ends with an unmet constraint: the nearest point meeting every
   // level and the speed, then the full stage again from there (README "Global search"). Off
   // by default: it adds an Ipopt projection to every infeasible run (sweeps, infeasible
-  // speeds); on for --random-starts and --global, where unmet starts are the common failure.
+  // speeds); on in globalSearch (--global, bench_optimize --random-starts), where unmet starts are
+  // the common failure.
   bool restore_feasibility = false;
   // Progress hook: the stage's label, the parameters of the solver's last point, its iteration.
   std::function<void(const std::string& stage, const GaitParameters& p, int iteration)>
