@@ -19,6 +19,11 @@
 //       Hessian, every grid entry in one NLP, no polish), `ipopt-runs` runs each (default 3):
 //       status, iterations, evaluations, wall-time median, final criterion, ratio Ipopt/SLSQP.
 //       --ipopt-only runs (d) alone.
+//   (g) --random-starts N: the random-start protocol alone (issue 14 item 3): on the three
+//       shipped configurations, N seeded starts (seed 1, the box of `--random-starts`, every
+//       start optimised: globalSearch without the basin skip): converged rate, number of
+//       clusters of optimal criteria (0.1 %), largest cluster's share of the N starts, median
+//       wall time per start, best polished criterion.
 //   (e) the optimisation of (a) with GradientMode::FiniteDifference (SLSQP): median of
 //       `fd-runs` (default 3); ratio to the exact-gradient median.
 //   (f) exact vs finite-difference gradients on configs/default.yaml, chesse_0.85.yaml and
@@ -30,6 +35,7 @@
 // JSON file cannot be written), 2 for bad arguments or unreadable configurations.
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -40,6 +46,7 @@
 
 #include "bench_timing.hpp"
 #include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/opt/global_search.hpp"
 #include "gaitopt/opt/optimizer.hpp"
 #include "gaitopt/io/json_writer.hpp"
 #include "gaitopt/io/optimize_config.hpp"
@@ -134,6 +141,7 @@ struct SweepRun {
 void usage(std::ostream& out) {
   out << "usage: bench_optimize [--json FILE] [--runs N] [--sweep-runs N] [--fd-runs N]\n"
          "                      [--no-ipopt] [--ipopt-runs N] [--ipopt-only] [--no-configs]\n"
+         "                      [--random-starts N]\n"
          "  --json FILE     also write every figure as JSON to FILE\n"
          "  --runs N        timed SLSQP optimisations of configs/default.yaml (default 7, >= 7)\n"
          "  --sweep-runs N  timed 9-speed sweeps (default 3)\n"
@@ -141,7 +149,8 @@ void usage(std::ostream& out) {
          "  --no-ipopt      skip the Ipopt vs SLSQP comparison (d)\n"
          "  --ipopt-runs N  runs per solver and configuration in (d) (default 3)\n"
          "  --ipopt-only    run (d) alone\n"
-         "  --no-configs    skip the chesse / chevallereau_aoustin gradient comparison\n";
+         "  --no-configs    skip the chesse / chevallereau_aoustin gradient comparison\n"
+         "  --random-starts N  run (g) alone: N seeded random starts on each shipped config\n";
 }
 
 void writeRun(JsonWriter& w, const Run& r) {
@@ -249,11 +258,90 @@ void writePairedCases(JsonWriter& w, const std::vector<PairedCase>& cases, const
   w.endArray();
 }
 
+// (g): the random-start protocol on one shipped configuration.
+struct StartProtocol {
+  std::string name;
+  int starts = 0;
+  GlobalSearchResult result;
+  Criterion criterion = Criterion::Torque;
+  int largest() const {
+    int n = 0;
+    for (const OptimumCluster& cl : result.clusters) n = std::max(n, cl.size());
+    return n;
+  }
+};
+
+StartProtocol runStartProtocol(const std::string& name, int starts) {
+  const OptimizeConfig c = loadOptimizeConfig(std::string(kConfigDir) + name);
+  const GaitEvaluator cev(c.robot, c.options, c.model_options);
+  OptimizationRequest req = optimizationRequest(c, configuredInitialGuess(c, cev.model()));
+  req.solver.print_every = 0;
+  GlobalSearchSettings gs;
+  gs.starts = starts;
+  gs.basin_radius = 0.0;
+  return {name, starts, globalSearch(cev, req, gs), c.criterion};
+}
+
+void printStartProtocol(const StartProtocol& p) {
+  const GlobalSearchResult& g = p.result;
+  std::printf("  %-32s converged %3d/%-3d (%5.1f %%)  clusters %3zu  largest %3d (%5.1f %%)  "
+              "median %.3f s/start  best %s\n",
+              p.name.c_str(), g.converged, p.starts, 100.0 * g.converged / p.starts,
+              g.clusters.size(), p.largest(), 100.0 * p.largest() / p.starts,
+              g.median_time_per_start_s,
+              criterionText(criterionOf(g.best, p.criterion)).c_str());
+}
+
+void writeStartProtocol(JsonWriter& w, const StartProtocol& p) {
+  const GlobalSearchResult& g = p.result;
+  w.beginObject();
+  w.key("config").value(p.name);
+  w.key("starts").value(p.starts);
+  w.key("converged").value(g.converged);
+  w.key("largest_cluster").value(p.largest());
+  w.key("median_time_per_start_s").value(g.median_time_per_start_s);
+  w.key("clusters").beginArray();
+  for (const OptimumCluster& cl : g.clusters) {
+    w.beginObject();
+    w.key("criterion").value(cl.criterion);
+    w.key("size").value(cl.size());
+    w.endObject();
+  }
+  w.endArray();
+  w.endObject();
+}
+
+// Runs (g) alone; exit status as main's.
+int startProtocolOnly(int starts, const std::string& json_path, const Environment& env) {
+  std::printf("(g) random-start protocol: %d starts per configuration, seed 1\n", starts);
+  std::vector<StartProtocol> protocols;
+  try {
+    for (const char* name :
+         {"default.yaml", "chesse_0.85.yaml", "chevallereau_aoustin_0.75.yaml"}) {
+      protocols.push_back(runStartProtocol(name, starts));
+      printStartProtocol(protocols.back());
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "bench_optimize: error: " << e.what() << "\n";
+    return 2;
+  }
+  if (json_path.empty()) return 0;
+  JsonWriter w;
+  w.beginObject();
+  writeEnvironment(w, "bench_optimize", env);
+  w.key("build").value(std::string(kBuildFlags));
+  w.key("random_starts").beginArray();
+  for (const StartProtocol& p : protocols) writeStartProtocol(w, p);
+  w.endArray();
+  w.endObject();
+  return writeJsonReport("bench_optimize", json_path, w) ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string json_path;
-  int runs = 7, sweep_runs = 3, fd_runs = 3, ipopt_runs = 3;
+  int runs = 7, sweep_runs = 3, fd_runs = 3, ipopt_runs = 3, random_starts = 0;
   bool with_ipopt = true, with_configs = true, ipopt_only = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -275,6 +363,9 @@ int main(int argc, char** argv) {
       ++i;
     } else if (arg == "--ipopt-only") {
       ipopt_only = true;
+    } else if (arg == "--random-starts" && has_value &&
+               parsePositive(argv[i + 1], random_starts)) {
+      ++i;
     } else if (arg == "--no-configs") {
       with_configs = false;
     } else {
@@ -284,6 +375,11 @@ int main(int argc, char** argv) {
     }
   }
 
+  if (random_starts > 0) {
+    const Environment env;
+    printEnvironment("bench_optimize", env);
+    return startProtocolOnly(random_starts, json_path, env);
+  }
   const std::string default_path = std::string(kConfigDir) + "default.yaml";
   std::optional<OptimizeConfig> config;
   std::optional<GaitEvaluator> evaluator;

@@ -15,6 +15,7 @@
 #include "commands.hpp"
 #include "gaitopt/gait/evaluator.hpp"
 #include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/opt/global_search.hpp"
 #include "gaitopt/opt/optimizer.hpp"
 #include "gaitopt/gait/summary.hpp"
 #include "gaitopt/io/optimize_config.hpp"
@@ -31,6 +32,7 @@ struct OptimizeArgs {
   std::string config;
   std::string out;
   int random_starts = 0;  // 0: one run from the configured initial guess
+  int global = 0;         // > 0: globalSearch with that many starts
   std::uint64_t seed = 1;
   bool quiet = false, verbose = false;
   std::string progress = "auto";
@@ -81,20 +83,7 @@ StartsSummary summarizeStarts(const std::vector<Run>& runs, Criterion c) {
   return s;
 }
 
-void writeRandomStarts(JsonWriter& w, const std::vector<Run>& runs, std::uint64_t seed,
-                       int best_start, Criterion c) {
-  const StartsSummary s = summarizeStarts(runs, c);
-  w.key("random_starts").beginObject();
-  w.key("count").value(static_cast<int>(runs.size()));
-  w.key("seed").value(static_cast<double>(seed));
-  w.key("converged").value(s.converged);
-  w.key("criterion_min");
-  numberOrNull(w, s.min);
-  w.key("criterion_max");
-  numberOrNull(w, s.max);
-  w.key("spread");
-  numberOrNull(w, s.min ? std::optional<double>(*s.max - *s.min) : std::nullopt);
-  w.key("best_start").value(best_start);
+void writeRuns(JsonWriter& w, const std::vector<Run>& runs, Criterion c) {
   w.key("runs").beginArray();
   for (const Run& run : runs) {
     w.beginObject();
@@ -113,7 +102,61 @@ void writeRandomStarts(JsonWriter& w, const std::vector<Run>& runs, std::uint64_
     w.endObject();
   }
   w.endArray();
+}
+
+void writeRandomStarts(JsonWriter& w, const std::vector<Run>& runs, std::uint64_t seed,
+                       int best_start, Criterion c) {
+  const StartsSummary s = summarizeStarts(runs, c);
+  w.key("random_starts").beginObject();
+  w.key("count").value(static_cast<int>(runs.size()));
+  w.key("seed").value(static_cast<double>(seed));
+  w.key("converged").value(s.converged);
+  w.key("criterion_min");
+  numberOrNull(w, s.min);
+  w.key("criterion_max");
+  numberOrNull(w, s.max);
+  w.key("spread");
+  numberOrNull(w, s.min ? std::optional<double>(*s.max - *s.min) : std::nullopt);
+  w.key("best_start").value(best_start);
+  writeRuns(w, runs, c);
   w.endObject();
+}
+
+// `global` in summary.json: the clusters of local optima (criterion, size, starts), the median
+// time per optimised start and every optimised run.
+void writeGlobal(JsonWriter& w, const GlobalSearchResult& g, const std::vector<Run>& runs,
+                 std::uint64_t seed, Criterion c) {
+  w.key("global").beginObject();
+  w.key("count").value(static_cast<int>(g.starts.size()));
+  w.key("seed").value(static_cast<double>(seed));
+  w.key("optimised").value(static_cast<int>(runs.size()));
+  w.key("skipped").value(g.skipped);
+  w.key("converged").value(g.converged);
+  w.key("median_time_per_start_s").value(g.median_time_per_start_s);
+  w.key("best_start").value(g.best_start);
+  w.key("clusters").beginArray();
+  for (const OptimumCluster& cl : g.clusters) {
+    w.beginObject();
+    w.key("criterion").value(cl.criterion);
+    w.key("size").value(cl.size());
+    w.key("starts").beginArray();
+    for (int m : cl.members) w.value(m);
+    w.endArray();
+    w.endObject();
+  }
+  w.endArray();
+  writeRuns(w, runs, c);
+  w.endObject();
+}
+
+void printClusters(std::ostream& out, const GlobalSearchResult& g, Criterion c) {
+  out << "global: " << g.converged << " of " << g.starts.size() - g.skipped
+      << " optimised starts optimal (" << g.skipped << " skipped in known basins), "
+      << g.clusters.size() << " clusters, median " << shortNumber(g.median_time_per_start_s, "%.3g")
+      << " s per start\n";
+  for (const OptimumCluster& cl : g.clusters)
+    out << "  " << criterionName(c) << " " << shortNumber(cl.criterion, "%.6g") << ": "
+        << cl.size() << " start(s)\n";
 }
 
 void printStartsTable(std::ostream& out, const std::vector<Run>& runs, Criterion c) {
@@ -157,10 +200,18 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
                       "Optimise from K random starts in the box of the README around the "
                       "configured initial guess, and keep the best")
           ->check(CLI::Range(1, 100000));
-  cmd->add_option("--seed", args->seed,
-                  "Seed of the random starts (std::mt19937_64), 0 to 2^53-1; default 1")
-      ->check(CLI::Range(std::uint64_t{0}, kMaxSeed))
-      ->needs(starts);
+  CLI::Option* global =
+      cmd->add_option("--global", args->global,
+                      "Multi-start global search: K random starts (the same box), starts inside "
+                      "the basin of an optimum already found skipped, the local optima "
+                      "clustered (0.1 %), the best one polished")
+          ->check(CLI::Range(1, 100000))
+          ->excludes(starts);
+  CLI::Option* seed =
+      cmd->add_option("--seed", args->seed,
+                      "Seed of the random starts of --random-starts or --global "
+                      "(std::mt19937_64), 0 to 2^53-1; default 1")
+          ->check(CLI::Range(std::uint64_t{0}, kMaxSeed));
   cmd->add_flag("--quiet", args->quiet, "No progress lines");
   cmd->add_flag("--verbose", args->verbose,
                 "Also the solver's own lines (scaled objective and violation)");
@@ -168,7 +219,9 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
                   "auto: on a terminal one line per stage updated in place; lines: every line")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "lines"}));
-  cmd->callback([args, &exit_code]() {
+  cmd->callback([args, &exit_code, seed, starts, global]() {
+    if (seed->count() > 0 && starts->count() == 0 && global->count() == 0)
+      throw CLI::RequiresError("--seed", "--random-starts or --global");
     // Everything that can fail on bad input happens before the output directory is touched.
     OptimizeConfig config = loadOptimizeConfig(args->config);
     StagedDirectory staged(args->out, ourOutputs(&config.solver));  // --out checked before work
@@ -188,7 +241,16 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
     const auto start_time = std::chrono::steady_clock::now();
 
     std::vector<Run> runs;
-    if (args->random_starts == 0) {
+    GlobalSearchResult global_result;
+    if (args->global > 0) {
+      GlobalSearchSettings gs;
+      gs.starts = args->global;
+      gs.seed = args->seed;
+      global_result = globalSearch(evaluator, optimizationRequest(config, initial), gs, log);
+      progress_lines.endLine();
+      for (const GlobalStart& st : global_result.starts)
+        if (!st.skipped) runs.push_back({st.index, st.result});
+    } else if (args->random_starts == 0) {
       runs.push_back({0, optimizeGait(evaluator, optimizationRequest(config, initial), log)});
       progress_lines.endLine();
     } else {
@@ -212,7 +274,8 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
     for (std::size_t i = 1; i < runs.size(); ++i) {
       if (better(runs[i].result, runs[best].result, criterion)) best = i;
     }
-    const OptimizationResult& r = runs[best].result;
+    // --global reports its polished best, which is not one of the listed starts.
+    const OptimizationResult& r = args->global > 0 ? global_result.best : runs[best].result;
     const GaitEvaluation<double>& e = r.evaluation;
 
     // summary.json (with criterion and solver), gait.yaml, trajectory.csv: io/optimize_output.hpp.
@@ -221,11 +284,13 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
           if (args->random_starts > 0) {
             writeRandomStarts(w, runs, args->seed, runs[best].start, criterion);
           }
+          if (args->global > 0) writeGlobal(w, global_result, runs, args->seed, criterion);
         });
     writeOptimizationOutputs(staged.path(), outputs);
     staged.commit();
 
     if (args->random_starts > 0) printStartsTable(std::cout, runs, criterion);
+    if (args->global > 0) printClusters(std::cout, global_result, criterion);
     std::cout << "optimize: " << r.status << ", " << criterionName(criterion) << " "
               << criterionText(r, criterion) << ", speed "
               << (zeroDynamicsComputed(evaluator, e) ? shortNumber(e.speed, "%.6g") + " m/s"

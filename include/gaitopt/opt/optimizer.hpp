@@ -34,6 +34,12 @@ struct SolverSettings {
   bool constraint_exchange = false;  // measured: SLSQP stalls with it, Ipopt gains (README)
   GradientMode gradients = GradientMode::Exact;
   int max_restarts = 3;  // of the full stage, from the last point, when it ends unmet
+  // When the full stage still ends with an unmet constraint: the nearest point meeting every
+  // level and the speed, then the full stage again from there (README "Global search"). Off
+  // by default: it adds an Ipopt projection to every infeasible run (sweeps, infeasible
+  // speeds); on in globalSearch (--global, bench_optimize --random-starts), where unmet starts are
+  // the common failure.
+  bool restore_feasibility = false;
   // Progress hook: the stage's label, the parameters of the solver's last point, its iteration.
   std::function<void(const std::string& stage, const GaitParameters& p, int iteration)>
       on_iteration;

@@ -1,0 +1,144 @@
+// Multi-start global search (opt/global_search.hpp): clustering of local optima on synthetic
+// lists, the basin distance, a small --global run on the default problem against the plain
+// optimum, and seeded reproducibility (library and CLI).
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/io/optimize_config.hpp"
+#include "gaitopt/opt/gait_problem.hpp"
+#include "gaitopt/opt/global_search.hpp"
+#include "gaitopt/opt/optimizer.hpp"
+#include "test_files.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using Catch::Matchers::Contains;
+using gaitopt::OptimumCluster;
+
+const std::string kDefaultConfig = gaitopt::test::sourcePath("configs/default.yaml");
+
+struct DefaultProblem {
+  gaitopt::OptimizeConfig config = gaitopt::loadOptimizeConfig(kDefaultConfig);
+  gaitopt::GaitEvaluator evaluator{config.robot, config.options, config.model_options};
+  gaitopt::OptimizationRequest request() const {
+    gaitopt::OptimizationRequest r = gaitopt::optimizationRequest(
+        config, gaitopt::configuredInitialGuess(config, evaluator.model()));
+    r.solver.print_every = 0;
+    return r;
+  }
+};
+
+const DefaultProblem& defaultProblem() {
+  static const DefaultProblem p;
+  return p;
+}
+
+std::vector<int> sizes(const std::vector<OptimumCluster>& clusters) {
+  std::vector<int> s;
+  for (const OptimumCluster& c : clusters) s.push_back(c.size());
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("global: clusters of a synthetic list of optima", "[optimize]") {
+  // 100 and 100.05 (0.05 %) together; 100.2 (0.2 %) apart; 120, 120.1 together; order of the
+  // input does not matter, members are indices into it in increasing value.
+  const std::vector<double> values = {120.1, 100.05, 100.2, 100.0, 120.0, 100.099};
+  const std::vector<OptimumCluster> c = gaitopt::clusterOptima(values, 1e-3);
+  REQUIRE(c.size() == 3);
+  CHECK(sizes(c) == std::vector<int>{3, 1, 2});
+  CHECK(c[0].criterion == 100.0);
+  CHECK(c[0].members == std::vector<int>{3, 1, 5});
+  CHECK(c[1].criterion == 100.2);
+  CHECK(c[1].members == std::vector<int>{2});
+  CHECK(c[2].criterion == 120.0);
+  CHECK(c[2].members == std::vector<int>{4, 0});
+  // The tolerance is relative to the cluster's lowest value, not chained from value to value.
+  CHECK(sizes(gaitopt::clusterOptima({1.0, 1.0009, 1.0018, 1.0027}, 1e-3)) ==
+        std::vector<int>{2, 2});
+  CHECK(gaitopt::clusterOptima({}, 1e-3).empty());
+  CHECK(sizes(gaitopt::clusterOptima({5.0, 5.0, 5.0}, 0.0)) == std::vector<int>{3});
+}
+
+TEST_CASE("global: the basin distance is the RMS of the scaled differences", "[optimize]") {
+  const gaitopt::Parameterisation par;
+  const gaitopt::GaitParameters s = gaitopt::parameterScales(par);
+  gaitopt::GaitParameters a = gaitopt::GaitParameters::Zero(par.size());
+  gaitopt::GaitParameters b = a;
+  b(0) = 2.0 * s(0);  // two scales on one of 17 parameters
+  CHECK(gaitopt::scaledRmsDistance(a, b, par) == Approx(2.0 / std::sqrt(17.0)).epsilon(1e-12));
+  b = a + s;  // one scale on every parameter
+  CHECK(gaitopt::scaledRmsDistance(a, b, par) == Approx(1.0).epsilon(1e-12));
+}
+
+TEST_CASE("global: a small multi-start run on the default problem finds the plain optimum",
+          "[optimize]") {
+  const DefaultProblem& d = defaultProblem();
+  const gaitopt::OptimizationResult plain = gaitopt::optimizeGait(d.evaluator, d.request());
+  REQUIRE(plain.status == "optimal");
+  const double c_plain = gaitopt::criterionValue(plain.evaluation, d.config.criterion);
+
+  gaitopt::GlobalSearchSettings gs;
+  gs.starts = gaitopt::test::lightTests() ? 2 : 3;
+  gs.seed = 1;
+  const gaitopt::GlobalSearchResult g = gaitopt::globalSearch(d.evaluator, d.request(), gs);
+  REQUIRE(static_cast<int>(g.starts.size()) == gs.starts);
+  REQUIRE_FALSE(g.clusters.empty());
+  CHECK(g.best.status == "optimal");
+  const double c_best = gaitopt::criterionValue(g.best.evaluation, d.config.criterion);
+  CHECK(std::abs(g.clusters.front().criterion - c_plain) <= 1e-3 * c_plain);
+  CHECK(c_best <= g.clusters.front().criterion);
+  CHECK(std::abs(c_best - c_plain) <= 1e-3 * c_plain);
+  // Bookkeeping: every optimal optimised start is in exactly one cluster.
+  int members = 0;
+  for (const OptimumCluster& c : g.clusters) members += c.size();
+  CHECK(members == g.converged);
+  CHECK(g.converged + g.skipped <= gs.starts);
+  CHECK(g.median_time_per_start_s > 0.0);
+  CHECK(g.best_start == g.clusters.front().members.front());
+}
+
+TEST_CASE("global: a start inside a known basin is skipped", "[optimize]") {
+  const DefaultProblem& d = defaultProblem();
+  // The two starts of seed 1 are about one scale apart (RMS); a radius of 10 scales makes the
+  // first optimum's basin cover the second start.
+  gaitopt::GlobalSearchSettings gs;
+  gs.starts = 2;
+  gs.basin_radius = 10.0;
+  const gaitopt::GlobalSearchResult g = gaitopt::globalSearch(d.evaluator, d.request(), gs);
+  REQUIRE(g.starts.size() == 2);
+  REQUIRE(g.starts[0].result.status == "optimal");
+  CHECK_FALSE(g.starts[0].skipped);
+  CHECK(g.starts[1].skipped);
+  CHECK(g.skipped == 1);
+  CHECK(g.converged == 1);
+}
+
+TEST_CASE("global: the same seed gives the same output", "[optimize]") {
+  gaitopt::test::ScratchDir scratch("global", "out");
+  std::string blocks[2];
+  for (std::string& block : blocks) {
+    const std::string out = scratch.fresh("out_global");
+    const gaitopt::test::CliRun run =
+        gaitopt::test::runCli("optimize --config " + gaitopt::test::quoted(kDefaultConfig) +
+                              " --out " + gaitopt::test::quoted(out) + " --global 1 --seed 1 --quiet");
+    INFO(run.out << run.err);
+    REQUIRE(run.exit_code == 0);
+    CHECK_THAT(run.out, Contains("global: 1 of 1 optimised starts optimal") &&
+                            Contains("1 clusters"));
+    block = gaitopt::test::readFile(out + "/summary.json");
+    CHECK_THAT(block, Contains("\"global\": {") && Contains("\"seed\": 1") &&
+                          Contains("\"clusters\": [") && Contains("\"size\": 1") &&
+                          Contains("\"median_time_per_start_s\": "));
+    // Wall times differ from run to run; everything else must not.
+    block = std::regex_replace(block, std::regex("\"(wall_time_s|median_time_per_start_s)\": [^,}\\n]*"), "");
+  }
+  CHECK(blocks[0] == blocks[1]);
+}
