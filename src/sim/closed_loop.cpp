@@ -197,9 +197,10 @@ DsInputs timeOptimalDsInputs(const ClosedLoop& s, const Vec5& q, const Vec5& qd,
   const Eigen::Vector2d yd(qd(1) - d1.first * qd(0), qd(2) - d2.first * qd(0));
   error << c.alphad - qd(0), y, 0.0;
   const double w = s.options.bandwidth;
-  // The bounds at (α, α̇) with the contact rows of the projection (4.60) (R_min = 0).
+  // The bounds at (α, α̇) with the contact rows of the projection (4.60), its R_min included.
   const DsAccelerationBounds b = dsAccelerationBounds(
-      s.controller, mo, {s.options.friction_coefficient, 0.0, s.options.full_torque_envelope},
+      s.controller, mo,
+      {s.options.friction_coefficient, s.options.min_normal_force, s.options.full_torque_envelope},
       q(0), qd(0));
   double alphadd = c.slope * qd(0) + kTimeOptimalGain * (c.alphad - qd(0));  // α̈_c on the curve
   if (b.defined) alphadd = std::clamp(alphadd, b.min, b.max);                // (4.1)

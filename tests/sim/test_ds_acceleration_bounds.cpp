@@ -243,6 +243,7 @@ TEST_CASE("Fig. 4.5 study: a (4.28) through the gait's own cycle, the cycle insi
 }  // namespace gaitopt::test
 
 #include "gaitopt/sim/hybrid_walk.hpp"
+#include "gaitopt/sim/impact_touchdown.hpp"
 
 namespace gaitopt::test {
 
@@ -256,10 +257,12 @@ TEST_CASE("Closed-loop time-optimal DS control brakes at the LP bound, then ride
   req.ds_control = DsAlphaControl::TimeOptimal;
   req.dalphad0 = -0.03;  // faster than the cycle: touchdown too fast, (4.1) brakes
   req.sample_rate = lightTests() ? 2000.0 : 10000.0;
-  const WalkResult r = simulateWalk(f.evaluation, f.model, f.model, req);
+  const WalkResult r = simulateWalk(f.evaluation, f.model, f.model, req,
+                                    gaitTouchdown(f.gait.options, "auto", req.friction_coefficient));
   INFO(r.message);
   REQUIRE(r.outcome == WalkOutcome::Completed);
-  const DsLimits l{f.gait.options.friction_coefficient, 0.0, f.gait.options.full_torque_envelope};
+  const DsLimits l{f.gait.options.friction_coefficient, req.min_normal_force,
+                   f.gait.options.full_torque_envelope};
   int at_bound = 0, ds = 0;
   for (const WalkSample& s : r.samples) {
     if (s.single_support) continue;
