@@ -2,9 +2,11 @@
 """Notebook-style example of the Python module: optimise the default step, look at it, and
 write it to disk so the CLI can re-use it.
 
-Run from the repository root after building (cmake ... && cmake --build build):
+Run after building (cmake ... && cmake --build build):
     PYTHONPATH=build/python /usr/bin/python3 examples/optimize_and_plot.py [OUT_DIR]
-OUT_DIR defaults to results/example. Needs python3-numpy and python3-matplotlib.
+OUT_DIR defaults to results/example. The configuration files are found next to this script
+(../configs); the `gaitopt` binary is $GAITOPT_BINARY, else build/gaitopt of the repository.
+Needs python3-numpy and python3-matplotlib.
 """
 import os
 import subprocess
@@ -17,10 +19,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 import gaitopt  # noqa: E402
 
+root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+binary = os.environ.get("GAITOPT_BINARY") or os.path.join(root, "build", "gaitopt")
 out = sys.argv[1] if len(sys.argv) > 1 else os.path.join("results", "example")
 
 # 1. Optimise as `gaitopt optimize --config configs/default.yaml --out OUT` (files written too).
-result = gaitopt.optimize("configs/default.yaml", out=out)
+result = gaitopt.optimize(os.path.join(root, "configs", "default.yaml"), out=out)
 print(f"status {result['solver']['status']}, C_Gamma {result['criteria']['C_Gamma']:.1f} N^2 m s, "
       f"speed {result['speed']:.3f} m/s, {result['solver']['iterations']} iterations")
 
@@ -32,7 +36,7 @@ for c in sorted(result["constraints"], key=lambda c: -(c["value"] if c["value"] 
 traj = result["trajectory"]
 q = [traj[k][0] for k in ("alpha", "delta1", "delta2", "delta3", "delta4")]
 qd = [traj[k][0] for k in ("alphad", "delta1d", "delta2d", "delta3d", "delta4d")]
-robot = gaitopt.Robot("configs/robot/rabbit_miossec.yaml")
+robot = gaitopt.Robot(os.path.join(root, "configs", "robot", "rabbit_miossec.yaml"))
 print(f"angular momentum about the stance foot at SS start: "
       f"{robot.model(q, qd)['pinned']['angular_momentum_foot1']:.3f} kg m^2/s")
 
@@ -50,5 +54,11 @@ fig.savefig(os.path.join(out, "torques_time.png"), dpi=100)
 
 # 5. The figures of `gaitopt plot` read the files just written.
 for kind in ("stick", "torques"):
-    subprocess.run(["build/gaitopt", "plot", kind, out], check=True)
+    subprocess.run([binary, "plot", kind, out], check=True)
+
+# 6. Ten steps at 1 kHz for a controller or a simulator, as `gaitopt export` writes them.
+walk = gaitopt.export(os.path.join(out, "gait.yaml"), steps=10, rate=1000.0,
+                      out=os.path.join(out, "walk.csv"))
+t = walk["samples"]["t"]
+print(f"exported {len(t)} samples over {t[-1]:.3f} s to {os.path.join(out, 'walk.csv')}")
 print(f"figures and files in {out}")

@@ -14,20 +14,33 @@ import csv
 import os
 import sys
 
-import matplotlib
+import numpy as np
+from _common import fail as fail_kind
+from _common import figure, out_as_positional, save
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.patches import Patch  # noqa: E402
-from _common import out_as_positional  # noqa: E402
-
+KIND = "impact_map"
 COLUMNS = ["theta_deg", "mu", "behaviour", "n_solutions", "status"]
 
 
 def fail(message):
-    print("impact_map.py: error: " + message, file=sys.stderr)
-    sys.exit(2)
+    fail_kind(KIND, message)
+
+
+def map_source(path):
+    """The map.csv of an impact-map directory (or the CSV itself), or exit 2 naming what the
+    directory is instead."""
+    if not os.path.isdir(path):
+        return path
+    source = os.path.join(path, "map.csv")
+    if not os.path.exists(source):
+        for marker, what in (("summary.json", "a step run directory (summary.json)"),
+                             ("sweep.csv", "a sweep directory (sweep.csv)"),
+                             ("residuals.csv", "a diagnose directory (residuals.csv)")):
+            if os.path.exists(os.path.join(path, marker)):
+                fail(f"{path}: {what}, not an impact map; 'impact_map' needs the directory "
+                     "written by gaitopt impact-map (map.csv) or its map.csv")
+        fail(f"{path}: no map.csv: not a gaitopt impact-map directory")
+    return source
 
 
 def read_map(path):
@@ -35,7 +48,7 @@ def read_map(path):
         with open(path, newline="") as f:
             rows = list(csv.DictReader(f))
             header = rows and list(rows[0].keys())
-    except OSError as e:
+    except (OSError, UnicodeDecodeError) as e:
         fail("cannot read %s: %s" % (path, e))
     if not rows or header != COLUMNS:
         fail("%s: expected the columns %s" % (path, ",".join(COLUMNS)))
@@ -68,8 +81,11 @@ def edges(centres):
 
 def plot(rows, out, title):
     thetas, mus, labels, cells = grid(rows)
+    fig, ax = figure(1, 1)
+    from matplotlib.patches import Patch
+    import matplotlib.pyplot as plt
+
     cmap = plt.get_cmap("tab20", max(len(labels), 1))
-    fig, ax = plt.subplots(figsize=(9, 5.5))
     ax.pcolormesh(edges(thetas), edges(mus), np.ma.masked_invalid(cells), cmap=cmap,
                   vmin=-0.5, vmax=len(labels) - 0.5, shading="flat")
     several = np.zeros_like(cells)
@@ -85,9 +101,7 @@ def plot(rows, out, title):
     ax.set_xlabel(r"direction $\theta$ of $V_2^-$ [deg]  ($-90$ = vertical touchdown)")
     ax.set_ylabel(r"friction coefficient $\mu$")
     ax.set_title(title)
-    fig.tight_layout()
-    fig.savefig(out, dpi=120)
-    print("written " + out)
+    save(KIND, fig, out)
 
 
 def main(argv):
@@ -102,8 +116,10 @@ def main(argv):
     if len(argv) not in (2, 3):
         print(__doc__, file=sys.stderr)
         sys.exit(2)
-    source = os.path.join(argv[1], "map.csv") if os.path.isdir(argv[1]) else argv[1]
+    source = map_source(argv[1])
     out = argv[2] if len(argv) == 3 else os.path.join(os.path.dirname(source) or ".", "map.png")
+    if os.path.splitext(out)[1].lower() not in (".png", ".svg"):
+        fail(f"--out {out}: the file name must end in .png or .svg")
     plot(read_map(source), out, title)
 
 

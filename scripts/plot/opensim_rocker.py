@@ -10,14 +10,13 @@ a horizontal line. Right: the same travel against time within the stance.
 Needs the Debian packages python3-numpy and python3-matplotlib.
 """
 import json
+import os
 import sys
 
-import matplotlib
+import numpy as np
+from _common import fail, figure, out_as_positional, save
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from _common import fail, out_as_positional  # noqa: E402
+KIND = "opensim_rocker"
 
 
 def centred(values, weights):
@@ -29,17 +28,22 @@ def main():
     if len(argv) not in (2, 3):
         sys.exit(__doc__)
     report_path = argv[1]
+    if os.path.isdir(report_path):
+        fail(KIND, f"{report_path}: a directory, not an import-opensim report; 'opensim_rocker' "
+                   "needs the JSON file written by gaitopt import-opensim --report")
     out = argv[2] if len(argv) == 3 else report_path.rsplit(".", 1)[0] + ".png"
+    if os.path.splitext(out)[1].lower() not in (".png", ".svg"):
+        fail(KIND, f"--out {out}: the file name must end in .png or .svg")
     try:
         with open(report_path) as f:
             report = json.load(f)
         rocker = report["rocker_foot"]
     except (OSError, ValueError) as e:
-        fail("opensim_rocker", f"cannot read {report_path}: {e}")
+        fail(KIND, f"cannot read {report_path}: {e}")
     except (KeyError, TypeError):
-        fail("opensim_rocker", f"{report_path}: no 'rocker_foot' member: not the --report JSON of "
-                               "gaitopt import-opensim")
-    fig, (ax_a, ax_t) = plt.subplots(1, 2, figsize=(11, 4.5))
+        fail(KIND, f"{report_path}: no 'rocker_foot' member: not the --report JSON of "
+                   "gaitopt import-opensim")
+    fig, (ax_a, ax_t) = figure(1, 2)
     colours = {"right": "tab:red", "left": "tab:blue"}
     span = np.array([-0.45, 0.45])
     for stance in report["stances"]:
@@ -60,9 +64,7 @@ def main():
     ax_t.set_ylabel("CoP x - mean [m]")
     ax_t.set_title("held-out CoP RMS: point %.1f mm, rocker %.1f mm" % (
         1e3 * rocker["holdout_cop_rms_point_foot"], 1e3 * rocker["holdout_cop_rms_rocker"]))
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
-    print(out)
+    save(KIND, fig, out)
 
 
 if __name__ == "__main__":
