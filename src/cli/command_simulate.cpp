@@ -70,9 +70,18 @@ std::vector<ExportRow> exportRows(const Model& plant, const WalkResult& r) {
     if (!s.single_support && !rows.empty() && rows.back().phase == Phase::SingleSupport)
       foot1_x = next_foot1_x;
     const Leg stance = (s.step % 2 == 0) == s.single_support ? Leg::Left : Leg::Right;
-    const TrajectoryRow tr{s.t, s.single_support ? Phase::SingleSupport : Phase::DoubleSupport,
-                           s.q, s.qd, s.qdd, s.gamma_star, s.R1, s.R2, foot2,
-                           chainPoint(plant.pinned.b, st) / plant.total_mass};
+    // exportRow reads the motion columns only; the drawing aids keep their defaults.
+    TrajectoryRow tr{};
+    tr.t = s.t;
+    tr.phase = s.single_support ? Phase::SingleSupport : Phase::DoubleSupport;
+    tr.q = s.q;
+    tr.qd = s.qd;
+    tr.qdd = s.qdd;
+    tr.gamma_star = s.gamma_star;
+    tr.R1 = s.R1;
+    tr.R2 = s.R2;
+    tr.foot2 = foot2;
+    tr.com = chainPoint(plant.pinned.b, st) / plant.total_mass;
     rows.push_back(exportRow(plant, tr, s.step, stance, foot1_x, s.t));
   }
   return rows;

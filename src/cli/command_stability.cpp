@@ -213,7 +213,9 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
     req.bandwidth = a->bandwidth;
     req.ds_control = dsAlphaControlOf(a->ds_control);
     configureForGait(gait.options, req);
-    req.tolerances = {1e-12, 1e-14};  // the map's noise must stay far below the FD step
+    // The map's noise must stay far below the FD step.
+    req.tolerances.relative = 1e-12;
+    req.tolerances.absolute = 1e-14;
     // The linearisation needs a smooth field: the unsaturated controller (the projection on
     // the torque limits is non-smooth); margins and the saturation count use the projection.
     WalkRequest analysis = req;
