@@ -328,6 +328,20 @@ void writeStartProtocol(JsonWriter& w, const StartProtocol& p) {
   w.key("converged").value(g.converged);
   w.key("largest_cluster").value(p.largest());
   w.key("median_time_per_start_s").value(g.median_time_per_start_s);
+  w.key("runs").beginArray();
+  for (const GlobalStart& st : g.starts) {
+    w.beginObject();
+    w.key("start").value(st.index);
+    w.key("status").value(st.result.status);
+    w.key("criterion");
+    if (const std::optional<double> c = criterionOf(st.result, p.criterion)) w.value(*c);
+    else w.null();
+    w.key("wall_time_s").value(st.result.wall_time_s);
+    w.key("restarts").value(st.restarts);
+    w.key("retries").value(st.retries);
+    w.endObject();
+  }
+  w.endArray();
   w.key("clusters").beginArray();
   for (const OptimumCluster& cl : g.clusters) {
     w.beginObject();
