@@ -23,7 +23,10 @@
 //       shipped configurations, N seeded starts (seed 1, the box of `--random-starts`, every
 //       start optimised: globalSearch without the basin skip): converged rate, number of
 //       clusters of optimal criteria (0.1 %), largest cluster's share of the N starts, median
-//       wall time per start, best polished criterion.
+//       wall time per start, best polished criterion; before them, one line per start (status,
+//       unmet level and groups, violation, criterion, time) and its stages.
+//       --start-config NAME (repeatable) restricts (g) to configs/NAME; --no-restarts and
+//       --no-retries switch off the two levers of the start refinement (start_refinement.hpp).
 //   (e) the optimisation of (a) with GradientMode::FiniteDifference (SLSQP): median of
 //       `fd-runs` (default 3); ratio to the exact-gradient median.
 //   (f) exact vs finite-difference gradients on configs/default.yaml, chesse_0.85.yaml and
@@ -141,7 +144,8 @@ struct SweepRun {
 void usage(std::ostream& out) {
   out << "usage: bench_optimize [--json FILE] [--runs N] [--sweep-runs N] [--fd-runs N]\n"
          "                      [--no-ipopt] [--ipopt-runs N] [--ipopt-only] [--no-configs]\n"
-         "                      [--random-starts N]\n"
+         "                      [--random-starts N [--start-config NAME]... [--no-restarts]\n"
+         "                       [--no-retries]]\n"
          "  --json FILE     also write every figure as JSON to FILE\n"
          "  --runs N        timed SLSQP optimisations of configs/default.yaml (default 7, >= 7)\n"
          "  --sweep-runs N  timed 9-speed sweeps (default 3)\n"
@@ -150,7 +154,10 @@ void usage(std::ostream& out) {
          "  --ipopt-runs N  runs per solver and configuration in (d) (default 3)\n"
          "  --ipopt-only    run (d) alone\n"
          "  --no-configs    skip the chesse / chevallereau_aoustin gradient comparison\n"
-         "  --random-starts N  run (g) alone: N seeded random starts on each shipped config\n";
+         "  --random-starts N  run (g) alone: N seeded random starts on each shipped config\n"
+         "  --start-config NAME  (g) on configs/NAME only (repeatable)\n"
+         "  --no-restarts   (g) without the restarts from an optimum (start_refinement.hpp)\n"
+         "  --no-retries    (g) without the perturbed retries of a start not optimal\n";
 }
 
 void writeRun(JsonWriter& w, const Run& r) {
@@ -271,7 +278,8 @@ struct StartProtocol {
   }
 };
 
-StartProtocol runStartProtocol(const std::string& name, int starts) {
+StartProtocol runStartProtocol(const std::string& name, int starts,
+                               const StartRefinementSettings& refinement) {
   const OptimizeConfig c = loadOptimizeConfig(std::string(kConfigDir) + name);
   const GaitEvaluator cev(c.robot, c.options, c.model_options);
   OptimizationRequest req = optimizationRequest(c, configuredInitialGuess(c, cev.model()));
@@ -279,11 +287,31 @@ StartProtocol runStartProtocol(const std::string& name, int starts) {
   GlobalSearchSettings gs;
   gs.starts = starts;
   gs.basin_radius = 0.0;
+  gs.refinement = refinement;
   return {name, starts, globalSearch(cev, req, gs), c.criterion};
+}
+
+// One line per start: why a start fails (its status, unmet level and groups, violation) and
+// the stages it went through, each with the solver's status and iterations.
+void printStartTable(const StartProtocol& p) {
+  for (const GlobalStart& st : p.result.starts) {
+    const OptimizationResult& r = st.result;
+    std::string unmet;
+    for (const std::string& u : r.unmet_constraints) unmet += (unmet.empty() ? "" : ",") + u;
+    std::printf("    start %3d  %-10s level %2d %-28s viol %9.2e  C %s  %.2f s  restarts %d "
+                "retries %d\n",
+                st.index, r.status.c_str(), r.unmet_level, unmet.c_str(), r.constraint_violation,
+                criterionText(criterionOf(r, p.criterion)).c_str(), r.wall_time_s, st.restarts,
+                st.retries);
+    for (const StageReport& sr : r.stages)
+      std::printf("        %-44s %-10s %4d it\n", sr.name.c_str(), nlpStatusName(sr.status),
+                  sr.iterations);
+  }
 }
 
 void printStartProtocol(const StartProtocol& p) {
   const GlobalSearchResult& g = p.result;
+  printStartTable(p);
   std::printf("  %-32s converged %3d/%-3d (%5.1f %%)  clusters %3zu  largest %3d (%5.1f %%)  "
               "median %.3f s/start  best %s\n",
               p.name.c_str(), g.converged, p.starts, 100.0 * g.converged / p.starts,
@@ -300,6 +328,20 @@ void writeStartProtocol(JsonWriter& w, const StartProtocol& p) {
   w.key("converged").value(g.converged);
   w.key("largest_cluster").value(p.largest());
   w.key("median_time_per_start_s").value(g.median_time_per_start_s);
+  w.key("runs").beginArray();
+  for (const GlobalStart& st : g.starts) {
+    w.beginObject();
+    w.key("start").value(st.index);
+    w.key("status").value(st.result.status);
+    w.key("criterion");
+    if (const std::optional<double> c = criterionOf(st.result, p.criterion)) w.value(*c);
+    else w.null();
+    w.key("wall_time_s").value(st.result.wall_time_s);
+    w.key("restarts").value(st.restarts);
+    w.key("retries").value(st.retries);
+    w.endObject();
+  }
+  w.endArray();
   w.key("clusters").beginArray();
   for (const OptimumCluster& cl : g.clusters) {
     w.beginObject();
@@ -312,13 +354,16 @@ void writeStartProtocol(JsonWriter& w, const StartProtocol& p) {
 }
 
 // Runs (g) alone; exit status as main's.
-int startProtocolOnly(int starts, const std::string& json_path, const Environment& env) {
-  std::printf("(g) random-start protocol: %d starts per configuration, seed 1\n", starts);
+int startProtocolOnly(int starts, const std::vector<std::string>& names,
+                      const StartRefinementSettings& refinement, const std::string& json_path,
+                      const Environment& env) {
+  std::printf("(g) random-start protocol: %d starts per configuration, seed 1, up to %d "
+              "restarts and %d retries per start\n",
+              starts, refinement.max_restarts, refinement.max_retries);
   std::vector<StartProtocol> protocols;
   try {
-    for (const char* name :
-         {"default.yaml", "chesse_0.85.yaml", "chevallereau_aoustin_0.75.yaml"}) {
-      protocols.push_back(runStartProtocol(name, starts));
+    for (const std::string& name : names) {
+      protocols.push_back(runStartProtocol(name, starts, refinement));
       printStartProtocol(protocols.back());
     }
   } catch (const std::exception& e) {
@@ -343,6 +388,8 @@ int main(int argc, char** argv) {
   std::string json_path;
   int runs = 7, sweep_runs = 3, fd_runs = 3, ipopt_runs = 3, random_starts = 0;
   bool with_ipopt = true, with_configs = true, ipopt_only = false;
+  std::vector<std::string> start_configs;
+  StartRefinementSettings refinement;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
@@ -366,6 +413,12 @@ int main(int argc, char** argv) {
     } else if (arg == "--random-starts" && has_value &&
                parsePositive(argv[i + 1], random_starts)) {
       ++i;
+    } else if (arg == "--start-config" && has_value) {
+      start_configs.push_back(argv[++i]);
+    } else if (arg == "--no-restarts") {
+      refinement.max_restarts = 0;
+    } else if (arg == "--no-retries") {
+      refinement.max_retries = 0;
     } else if (arg == "--no-configs") {
       with_configs = false;
     } else {
@@ -378,7 +431,9 @@ int main(int argc, char** argv) {
   if (random_starts > 0) {
     const Environment env;
     printEnvironment("bench_optimize", env);
-    return startProtocolOnly(random_starts, json_path, env);
+    if (start_configs.empty())
+      start_configs = {"default.yaml", "chesse_0.85.yaml", "chevallereau_aoustin_0.75.yaml"};
+    return startProtocolOnly(random_starts, start_configs, refinement, json_path, env);
   }
   const std::string default_path = std::string(kConfigDir) + "default.yaml";
   std::optional<OptimizeConfig> config;

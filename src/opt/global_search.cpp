@@ -10,6 +10,10 @@
 namespace gaitopt {
 namespace {
 
+// Offset of the refinement's generator seed from the starts' (any fixed value: a distinct
+// stream, the same on every platform).
+constexpr std::uint64_t kRetryStream = 0x9E3779B97F4A7C15ULL;
+
 bool optimal(const OptimizationResult& r) { return r.status == "optimal"; }
 
 double criterionOf(const OptimizationResult& r, Criterion c) {
@@ -75,6 +79,7 @@ GlobalSearchResult globalSearch(const GaitEvaluator& ev, const OptimizationReque
   const Parameterisation& par = ev.options().parameterisation;
   GlobalSearchResult g;
   std::mt19937_64 rng(s.seed);
+  std::mt19937_64 retry_rng(s.seed + kRetryStream);
   std::vector<double> times;
   for (int k = 1; k <= s.starts; ++k) {
     GlobalStart st;
@@ -86,7 +91,11 @@ GlobalSearchResult globalSearch(const GaitEvaluator& ev, const OptimizationReque
       OptimizationRequest req = request;
       req.initial = st.start;
       req.solver.restore_feasibility = true;
-      st.result = optimizeGait(ev, req, log);
+      StartRefinement refined =
+          refineStart(ev, req, optimizeGait(ev, req, log), s.refinement, retry_rng, log);
+      st.result = std::move(refined.result);
+      st.restarts = refined.restarts;
+      st.retries = refined.retries;
       times.push_back(st.result.wall_time_s);
     }
     g.skipped += st.skipped ? 1 : 0;

@@ -26,8 +26,9 @@ GaitParameters randomStartHalfWidths(const Parameterisation& par) {
   return extendPerParameter(h, par, {0.15, 0.15}, {0.15, 0.1});
 }
 
-RandomStartBox randomStartBox(const GaitParameters& centre, const Parameterisation& par) {
-  const GaitParameters h = randomStartHalfWidths(par);
+RandomStartBox randomStartBox(const GaitParameters& centre, const Parameterisation& par,
+                              double scale) {
+  const GaitParameters h = scale * randomStartHalfWidths(par);
   RandomStartBox box{centre - h, centre + h};
   box.lower(kStepLength) = std::max(box.lower(kStepLength), kMinStepLength);
   box.lower(kZ2Int) = std::max(box.lower(kZ2Int), kMinSwingHeight);
@@ -40,8 +41,8 @@ RandomStartBox randomStartBox(const GaitParameters& centre, const Parameterisati
 }
 
 GaitParameters randomStart(const GaitParameters& centre, std::mt19937_64& rng,
-                           const Parameterisation& par) {
-  const RandomStartBox box = randomStartBox(centre, par);
+                           const Parameterisation& par, double scale) {
+  const RandomStartBox box = randomStartBox(centre, par, scale);
   GaitParameters p(par.size());
   for (int i = 0; i < par.size(); ++i) {
     p(i) = box.lower(i) + unit(rng) * (box.upper(i) - box.lower(i));

@@ -103,6 +103,14 @@ TEST_CASE("global: a small multi-start run on the default problem finds the plai
   CHECK(g.converged + g.skipped <= gs.starts);
   CHECK(g.median_time_per_start_s > 0.0);
   CHECK(g.best_start == g.clusters.front().members.front());
+  // Each optimised start was refined (start_refinement.hpp): an optimal one restarted at least
+  // once, within the settings' bounds.
+  for (const gaitopt::GlobalStart& st : g.starts) {
+    if (st.skipped) continue;
+    CHECK(st.restarts <= gs.refinement.max_restarts);
+    CHECK(st.retries <= gs.refinement.max_retries);
+    if (st.result.status == "optimal") CHECK(st.restarts >= 1);
+  }
 }
 
 TEST_CASE("global: a start inside a known basin is skipped", "[optimize]") {

@@ -19,13 +19,15 @@ struct RandomStartBox {
 // α̇_iSS ±0.3 rad/s; the four slopes ∂δ/∂α ±0.5; T_DS ±0.05 s.
 GaitParameters randomStartHalfWidths(const Parameterisation& par = {});
 
-// [centre − half-width, centre + half-width], then clipped so that z2_int ≥ 0.005 m,
+// [centre − scale × half-width, centre + scale × half-width], then clipped so that z2_int ≥ 0.005 m,
 // α̇_iSS ≤ −0.05 rad/s and T_DS ≥ 0.02 s (and d ≥ 0.05 m): a start keeps a swing foot above
 // the ground, a forward stance-tibia rate and a positive double support.
-RandomStartBox randomStartBox(const GaitParameters& centre, const Parameterisation& par = {});
+RandomStartBox randomStartBox(const GaitParameters& centre, const Parameterisation& par = {},
+                              double scale = 1.0);
 
-// One point drawn uniformly in randomStartBox(centre): one draw of `rng` per parameter, in order.
+// One point drawn uniformly in randomStartBox(centre, par, scale): one draw of `rng` per
+// parameter, in order.
 GaitParameters randomStart(const GaitParameters& centre, std::mt19937_64& rng,
-                           const Parameterisation& par = {});
+                           const Parameterisation& par = {}, double scale = 1.0);
 
 }  // namespace gaitopt
