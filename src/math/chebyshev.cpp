@@ -80,7 +80,7 @@ ChebyshevGrid::ChebyshevGrid(int n) : n_(n) {
     for (int m = 0; m <= n + 1; ++m)
       evaluate_minus_top(k, m) = cosPiRatio(static_cast<long long>(m) * k, n) - 1.0;
   antiderivative_ = integrate * to_coeffs;
-  cumulative_ = evaluate_minus_top * antiderivative_;
+  cumulative_ = evaluate_minus_top * integrate * to_coeffs;  // this order: bit-stable results
   cumulative_.row(0).setZero();  // already zero in exact arithmetic; make it bit-exact
 
   // Differentiation matrix D_jk = (w_k / w_j) / (s_j - s_k) with the barycentric weights; node

@@ -1,6 +1,9 @@
 // Root location and integration weights of math/chebyshev_abs_integral.hpp (double only).
 #include "gaitopt/math/chebyshev_abs_integral.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "gaitopt/math/bracketed_root.hpp"
 
 namespace gaitopt {
@@ -19,7 +22,12 @@ std::vector<double> interpolantSignChanges(const ChebyshevGrid& grid,
       roots.push_back(bracketedRoot(p, lo, f_lo, hi, f_hi));
       continue;
     }
-    if ((slope[k + 1] < 0.0) == (slope[k] < 0.0)) continue;
+    // An extremum between the nodes can only cross zero if the values are within reach of the
+    // slopes over the interval; the test skips the search for most extrema (and their cost).
+    if ((slope[k + 1] < 0.0) == (slope[k] < 0.0) ||
+        std::min(std::abs(f_lo), std::abs(f_hi)) >
+            (hi - lo) * std::max(std::abs(slope[k]), std::abs(slope[k + 1])))
+      continue;
     const double e = bracketedRoot(dp, lo, slope[k + 1], hi, slope[k]);
     const double f_e = p(e);
     if ((f_e < 0.0) == (f_lo < 0.0)) continue;
@@ -32,19 +40,21 @@ std::vector<double> interpolantSignChanges(const ChebyshevGrid& grid,
 Eigen::VectorXd absIntegralWeights(const ChebyshevGrid& grid, const Eigen::VectorXd& values,
                                    const std::vector<double>& roots) {
   // With F(s) = ∫_{+1}^{s} p = cumulativeAt(s)·f, each piece [e_{k+1}, e_k] between consecutive
-  // ends (+1, the roots, −1) contributes σ_k (F(e_k) − F(e_{k+1})), σ_k its sign.
+  // ends (+1, the roots, −1) contributes σ_k (F(e_k) − F(e_{k+1})), σ_k its sign: that of p(+1)
+  // in the first piece, alternating since every root is a sign change.
   std::vector<double> ends{1.0};
   ends.insert(ends.end(), roots.begin(), roots.end());
   ends.push_back(-1.0);
   Eigen::RowVectorXd upper = Eigen::RowVectorXd::Zero(grid.size());  // F at s = +1
   Eigen::VectorXd u = Eigen::VectorXd::Zero(grid.size());
+  double sign = values[0] < 0.0 ? -1.0 : 1.0;
   for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
     const Eigen::RowVectorXd lower =
         k + 2 == ends.size() ? Eigen::RowVectorXd(-grid.weights().transpose())
                              : grid.cumulativeAt(ends[k + 1]);
-    const double sign = grid.interpolate(values, 0.5 * (ends[k] + ends[k + 1])) < 0.0 ? -1.0 : 1.0;
     u += sign * (upper - lower).transpose();
     upper = lower;
+    sign = -sign;
   }
   return u;
 }

@@ -500,31 +500,37 @@ template <class S> IntegrandValues<S> integrandValues(int nodes) {
   return f;
 }
 
-// Integrands at sample k of a phase, times the time per unit grid coordinate there.
+// Integrands at sample k of a phase per unit of its coordinate x (α in the SS, t in the DS):
+// per unit time divided by phase_rate = dx/dt (α̇, or 1).
 template <class S>
-void setIntegrands(const Model& m, const PhaseSample<S>& s, int k, const S& time_density,
+void setIntegrands(const Model& m, const PhaseSample<S>& s, int k, const S& phase_rate,
                    IntegrandValues<S>& f) {
   const S torque2 = s.gamma_star.squaredNorm();
   const S mech = s.gamma_star.dot(s.omega);
-  f[kTorque2](k) = torque2 * time_density;
-  f[kMechanical](k) = mech * time_density;
-  f[kPower](k) = (mech + jouleCoefficient(m) * torque2) * time_density;
-  for (int j = 0; j < 4; ++j) f[kJointPower + j](k) = s.gamma_star(j) * s.omega(j) * time_density;
+  f[kTorque2](k) = torque2 / phase_rate;
+  f[kMechanical](k) = mech / phase_rate;
+  f[kPower](k) = (mech + jouleCoefficient(m) * torque2) / phase_rate;
+  for (int j = 0; j < 4; ++j) f[kJointPower + j](k) = s.gamma_star(j) * s.omega(j) / phase_rate;
 }
 
-// C_Γ, C_E, W, C_frott (times d) over one smooth piece of a phase, t ∈ [a, b] in the grid's
-// coordinate s: the integrands `f` are per unit s, so each integral is over s ∈ [−1, 1]. The
-// kinks of max(0, P) and |Γ*_j ω_j| are appended to `kinks`, mapped to [a, b], in time order.
+// C_Γ, C_E, W, C_frott (times d) over one smooth piece x ∈ [a, b] of a phase, from the
+// integrands per unit x at the grid's nodes mapped to [a, b]. Per unit of the grid coordinate s
+// they are f·(b − a)/2, positive for a positive integrand per unit time (in the SS, α and s
+// decrease with time and α̇ < 0), hence |b − a|/2 times ∫|f| and ∫max(0, ±f) over s ∈ [−1, 1].
+// The kinks of max(0, P) and |Γ*_j ω_j| are appended to `kinks`, in x, in time order.
 template <class S>
 std::array<S, 4> integrateCriteria(const ChebyshevGrid& grid, const IntegrandValues<S>& f,
                                    const S& a, const S& b, std::vector<S>& kinks) {
+  const double orientation = valueOf(b) < valueOf(a) ? -1.0 : 1.0;
+  const S half_length = 0.5 * orientation * (b - a);
+  const Eigen::Matrix<S, Eigen::Dynamic, 1> power = f[kPower] * S(orientation);
   std::vector<S> roots;
   std::array<S, 4> r;
-  r[0] = integrateReference(grid, f[kTorque2]);
-  r[1] = integratePositivePart(grid, f[kPower], roots);
+  r[0] = integrateOverInterval(grid, f[kTorque2], a, b);
+  r[1] = half_length * integratePositivePart(grid, power, roots);
   r[2] = S(0.0);
-  for (int j = 0; j < 4; ++j) r[2] += integrateAbs(grid, f[kJointPower + j], roots);
-  r[3] = integrateReference(grid, f[kMechanical]);
+  for (int j = 0; j < 4; ++j) r[2] += half_length * integrateAbs(grid, f[kJointPower + j], roots);
+  r[3] = integrateOverInterval(grid, f[kMechanical], a, b);
   std::sort(roots.begin(), roots.end(),
             [](const S& x, const S& y) { return valueOf(x) > valueOf(y); });
   for (const S& s : roots) kinks.push_back(a + 0.5 * (1.0 - s) * (b - a));
@@ -591,10 +597,9 @@ std::array<S, 4> integrateDsPiecewise(EvalContext<S>& c, const DsPieces& pieces)
     const S a = piece == 0 ? S(0.0) : ends[piece - 1];
     const S b = piece == sw.size() ? mo.T_DS : ends[piece];
     const auto ts = mappedNodes(c.piece_grid, a, b);
-    const S time_density = 0.5 * (b - a);
     for (int k = 0; k < c.piece_grid.size(); ++k) {
       const PhaseSample<S> s = dsSample(c.model, c.options, mo, S(ts(k)), pieces.branches[piece]);
-      setIntegrands(c.model, s, k, time_density, f);
+      setIntegrands(c.model, s, k, S(1.0), f);
     }
     const std::array<S, 4> part = integrateCriteria(c.piece_grid, f, a, b, c.out.criteria_kinks);
     for (int i = 0; i < 4; ++i) total[i] += part[i];
@@ -608,7 +613,6 @@ template <class S> std::array<S, 4> dsMotionStage(EvalContext<S>& c, ConstraintS
   const GaitOptions& o = c.options;
   const int nds = c.ds_grid.size();
   IntegrandValues<S> ds_int = integrandValues<S>(nds);
-  const S time_density = 0.5 * mo.T_DS;
   const auto ts = mappedNodes(c.ds_grid, S(0.0), mo.T_DS);
   std::vector<std::array<double, 6>> switching(nds);
   std::vector<int> branch(nds);
@@ -620,7 +624,7 @@ template <class S> std::array<S, 4> dsMotionStage(EvalContext<S>& c, ConstraintS
     setContactConstraints(c, kFrictionConeDS, kNormalForceDS, 0, 2, k, s.R1, st);
     setContactConstraints(c, kFrictionConeDS, kNormalForceDS, 1, 2, k, s.R2, st);
     c.set(kDsMonotone, k, s.qd(0) - o.ds_alphadot_max, st);  // (3.43)
-    setIntegrands(c.model, s, k, time_density, ds_int);
+    setIntegrands(c.model, s, k, S(1.0), ds_int);
   }
   c.out.ds_pieces = c.known_pieces ? *c.known_pieces : dsPieces(c, ts, branch, switching);
   return c.out.ds_pieces.switch_times.empty()
@@ -635,8 +639,6 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
   const ConstraintState st = c.stateAbove(4);
   const int nss = c.ss_grid.size();
   IntegrandValues<S> ss_int = integrandValues<S>(nss);
-  // Time per unit s at the SS nodes: dt = dα / α̇ (3.29) with dα = (α_fSS − α_iSS)/2 (−ds), > 0.
-  const S half_range = 0.5 * (mo.alpha_fSS - mo.alpha_iSS);
   for (int k = 0; k < nss; ++k) {
     const S& ad = mo.ss_alphadot(k);
     const PhaseSample<S> s = ssSample(c.model, pts[k], ad, mo.ss_alphaddot(k));
@@ -646,7 +648,7 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
       const S x = s.foot2(0) / mo.d;
       c.set(kClearance, k - 1, -(s.foot2(1) - o.clearance_height * (1.0 - x * x)), st);
     }
-    setIntegrands(c.model, s, k, S(half_range / ad), ss_int);
+    setIntegrands(c.model, s, k, ad, ss_int);  // dt = dα / α̇ (3.29)
   }
   const std::array<S, 4> ss_total =
       integrateCriteria(c.ss_grid, ss_int, mo.alpha_iSS, mo.alpha_fSS, c.out.criteria_kinks);

@@ -14,14 +14,15 @@ namespace gaitopt {
 
 // Sign changes of the interpolant of `values` in [-1, 1], in decreasing s (the nodes' order):
 // one between consecutive nodes of opposite signs, and a pair around an extremum between nodes
-// of equal sign where p′ (spectral, at the nodes) changes sign and the extremum crosses zero.
-// Not seen: a pair between two nodes where p′ has equal signs (p would wiggle on a scale finer
-// than the grid resolves). Sign convention: 0 counts as positive.
+// of equal sign where p′ (spectral, at the nodes) changes sign, the smaller |value| is within
+// the interval's width times the larger |p′| and the extremum crosses zero. Not seen: a pair
+// between two nodes where p′ has equal signs or p bends by more than that (p would vary on a
+// scale finer than the grid resolves). Sign convention: 0 counts as positive.
 std::vector<double> interpolantSignChanges(const ChebyshevGrid& grid,
                                            const Eigen::VectorXd& values);
 
 // Weights u with u·f = ∫_{-1}^{1} |p(s)| ds for the interpolant p of f whose sign changes
-// (interpolantSignChanges) are `roots`; p's sign in each piece is taken at its middle.
+// (interpolantSignChanges) are `roots`.
 Eigen::VectorXd absIntegralWeights(const ChebyshevGrid& grid, const Eigen::VectorXd& values,
                                    const std::vector<double>& roots);
 
