@@ -72,6 +72,9 @@ template <class AD> GaitGradient GaitEvaluator::gradientWith(const GaitParameter
   r.dT_SS = gradientOf(ad.T_SS, n);
   r.dT_DS = gradientOf(ad.T_DS, n);
   r.dspeed = gradientOf(ad.speed, n);
+  r.dcriteria_kinks.resize(static_cast<int>(ad.criteria_kinks.size()), n);
+  for (int k = 0; k < r.dcriteria_kinks.rows(); ++k)
+    r.dcriteria_kinks.row(k) = gradientOf(ad.criteria_kinks[k], n).transpose();
   return r;
 }
 

@@ -79,7 +79,8 @@ ChebyshevGrid::ChebyshevGrid(int n) : n_(n) {
   for (int k = 0; k <= n; ++k)
     for (int m = 0; m <= n + 1; ++m)
       evaluate_minus_top(k, m) = cosPiRatio(static_cast<long long>(m) * k, n) - 1.0;
-  cumulative_ = evaluate_minus_top * integrate * to_coeffs;
+  antiderivative_ = integrate * to_coeffs;
+  cumulative_ = evaluate_minus_top * integrate * to_coeffs;  // this order: bit-stable results
   cumulative_.row(0).setZero();  // already zero in exact arithmetic; make it bit-exact
 
   // Differentiation matrix D_jk = (w_k / w_j) / (s_j - s_k) with the barycentric weights; node
@@ -97,6 +98,15 @@ ChebyshevGrid::ChebyshevGrid(int n) : n_(n) {
     }
     differentiation_(j, j) = -row_sum;
   }
+}
+
+Eigen::RowVectorXd ChebyshevGrid::cumulativeAt(double s) const {
+  // T_m(s) − T_m(1) by the three-term recurrence, as the rows of cumulative_ at the nodes.
+  Eigen::RowVectorXd t(n_ + 2);
+  t[0] = 1.0;
+  t[1] = s;
+  for (int m = 2; m <= n_ + 1; ++m) t[m] = 2.0 * s * t[m - 1] - t[m - 2];
+  return (t.array() - 1.0).matrix() * antiderivative_;
 }
 
 int ChebyshevGrid::nearestNode(double s) const {

@@ -49,6 +49,11 @@ template <class S> struct GaitEvaluation {
   S T_SS = S(0.0), T_DS = S(0.0), step_length = S(0.0), speed = S(0.0), alphadot_fSS = S(0.0);
   GaitMotion<S> motion;
   DsPieces ds_pieces;
+  // Where the quadrature of W and C_E is split: the roots of the Γ*_j ω_j and of the electrical
+  // power, the SS ones first (α [rad], the first ss_criteria_kinks entries), then the DS ones
+  // (t from the DS start [s]), each phase in time order.
+  std::vector<S> criteria_kinks;
+  int ss_criteria_kinks = 0;
 
   // Defined in the thesis' sense: every level below the criterion's (0–4) holds.
   bool defined() const { return failed_level < 0 || failed_level >= 5; }

@@ -26,6 +26,7 @@ struct GaitGradient {
   GaitEvaluation<double> value;
   Eigen::MatrixXd dg;  // rows: constraints, columns: parameters
   GaitParameters dC_Gamma, dC_E, dW, dC_frott, dT_SS, dT_DS, dspeed;
+  Eigen::MatrixXd dcriteria_kinks;  // rows: the AD pass's criteria_kinks (implicit functions)
 };
 
 class GaitEvaluator {

@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gaitopt/math/bracketed_root.hpp"
 #include "gaitopt/math/chebyshev.hpp"
+#include "gaitopt/math/chebyshev_abs_integral.hpp"
 #include "gaitopt/gait/ds_force_distribution.hpp"
 #include "gaitopt/gait/evaluation.hpp"
 #include "gaitopt/gait/impact_landing.hpp"
@@ -485,50 +487,54 @@ void setContactConstraints(EvalContext<S>& c, int cone_group, int normal_group, 
   c.set(normal_group, feet * k + foot, c.options.min_normal_force - R(1), st);
 }
 
-// Integrands of the criteria at one sample: Γ*ᵀΓ*, max(0, electrical power), Σ|Γ*_j ω_j|, Γ*ᵀω.
-template <class S> std::array<S, 4> criteriaIntegrands(const Model& m, const PhaseSample<S>& s) {
+// Smooth integrands of the criteria at one sample: Γ*ᵀΓ*, Γ*ᵀω, the electrical power P (3.32)
+// and the joint powers Γ*_j ω_j. C_E and W integrate max(0, P) and Σ_j |Γ*_j ω_j| (3.147), whose
+// kinks integrateCriteria splits at.
+constexpr int kTorque2 = 0, kMechanical = 1, kPower = 2, kJointPower = 3, kNumIntegrands = 7;
+template <class S>
+using IntegrandValues = std::array<Eigen::Matrix<S, Eigen::Dynamic, 1>, kNumIntegrands>;
+
+template <class S> IntegrandValues<S> integrandValues(int nodes) {
+  IntegrandValues<S> f;
+  for (auto& v : f) v.resize(nodes);
+  return f;
+}
+
+// Integrands at sample k of a phase per unit of its coordinate x (α in the SS, t in the DS):
+// per unit time divided by phase_rate = dx/dt (α̇, or 1).
+template <class S>
+void setIntegrands(const Model& m, const PhaseSample<S>& s, int k, const S& phase_rate,
+                   IntegrandValues<S>& f) {
   const S torque2 = s.gamma_star.squaredNorm();
   const S mech = s.gamma_star.dot(s.omega);
-  const S power = mech + jouleCoefficient(m) * torque2;  // (3.32)
-  S absolute(0.0);
-  for (int j = 0; j < 4; ++j) {
-    const S pj = s.gamma_star(j) * s.omega(j);
-    absolute += valueOf(pj) < 0.0 ? S(-pj) : pj;  // (3.147)
-  }
-  return {torque2, valueOf(power) > 0.0 ? power : S(0.0), absolute, mech};
+  f[kTorque2](k) = torque2 / phase_rate;
+  f[kMechanical](k) = mech / phase_rate;
+  f[kPower](k) = (mech + jouleCoefficient(m) * torque2) / phase_rate;
+  for (int j = 0; j < 4; ++j) f[kJointPower + j](k) = s.gamma_star(j) * s.omega(j) / phase_rate;
 }
 
+// C_Γ, C_E, W, C_frott (times d) over one smooth piece x ∈ [a, b] of a phase, from the
+// integrands per unit x at the grid's nodes mapped to [a, b]. Per unit of the grid coordinate s
+// they are f·(b − a)/2, positive for a positive integrand per unit time (in the SS, α and s
+// decrease with time and α̇ < 0), hence |b − a|/2 times ∫|f| and ∫max(0, ±f) over s ∈ [−1, 1].
+// The kinks of max(0, P) and |Γ*_j ω_j| are appended to `kinks`, in x, in time order.
 template <class S>
-std::array<S, 4> integrateEach(const ChebyshevGrid& grid,
-                               const std::array<Eigen::Matrix<S, Eigen::Dynamic, 1>, 4>& f,
-                               const S& a, const S& b) {
+std::array<S, 4> integrateCriteria(const ChebyshevGrid& grid, const IntegrandValues<S>& f,
+                                   const S& a, const S& b, std::vector<S>& kinks) {
+  const double orientation = valueOf(b) < valueOf(a) ? -1.0 : 1.0;
+  const S half_length = 0.5 * orientation * (b - a);
+  const Eigen::Matrix<S, Eigen::Dynamic, 1> power = f[kPower] * S(orientation);
+  std::vector<S> roots;
   std::array<S, 4> r;
-  for (int i = 0; i < 4; ++i) r[i] = integrateOverInterval(grid, f[i], a, b);
+  r[0] = integrateOverInterval(grid, f[kTorque2], a, b);
+  r[1] = half_length * integratePositivePart(grid, power, roots);
+  r[2] = S(0.0);
+  for (int j = 0; j < 4; ++j) r[2] += half_length * integrateAbs(grid, f[kJointPower + j], roots);
+  r[3] = integrateOverInterval(grid, f[kMechanical], a, b);
+  std::sort(roots.begin(), roots.end(),
+            [](const S& x, const S& y) { return valueOf(x) > valueOf(y); });
+  for (const S& s : roots) kinks.push_back(a + 0.5 * (1.0 - s) * (b - a));
   return r;
-}
-
-// Time in [lo, hi] where switching function i changes sign: Illinois-modified regula falsi.
-template <class F> double switchTime(const F& fn, double lo, double f_lo, double hi, double f_hi) {
-  int side = 0;
-  for (int it = 0; it < 80 && hi - lo > 1e-12; ++it) {
-    double t = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
-    if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);  // secant unusable (huge or equal values)
-    const double ft = fn(t);
-    if (!std::isfinite(ft)) return 0.5 * (lo + hi);
-    if (ft == 0.0) return t;
-    if ((ft < 0.0) == (f_lo < 0.0)) {
-      lo = t;
-      f_lo = ft;
-      if (side == -1) f_hi *= 0.5;
-      side = -1;
-    } else {
-      hi = t;
-      f_hi = ft;
-      if (side == 1) f_lo *= 0.5;
-      side = 1;
-    }
-  }
-  return 0.5 * (lo + hi);
 }
 
 // DS pieces: the times where the force-distribution branch changes, from the sign changes of
@@ -548,7 +554,7 @@ DsPieces dsPieces(EvalContext<S>& c, const Eigen::Matrix<S, Eigen::Dynamic, 1>& 
       const double a = switching[k][i], b = switching[k + 1][i];
       if ((a < 0.0) == (b < 0.0)) continue;
       const auto fn = [&phi, i](double t) { return phi(t, i); };
-      found.push_back({switchTime(fn, valueOf(ts(k)), a, valueOf(ts(k + 1)), b), i});
+      found.push_back({bracketedRoot(fn, valueOf(ts(k)), a, valueOf(ts(k + 1)), b), i});
     }
   std::sort(found.begin(), found.end());
   DsPieces pieces;
@@ -583,8 +589,7 @@ std::array<S, 4> integrateDsPiecewise(EvalContext<S>& c, const DsPieces& pieces)
   const GaitMotion<S>& mo = c.out.motion;
   const std::vector<double>& sw = pieces.switch_times;
   std::array<S, 4> total{S(0.0), S(0.0), S(0.0), S(0.0)};
-  std::array<Eigen::Matrix<S, Eigen::Dynamic, 1>, 4> f;
-  for (auto& v : f) v.resize(c.piece_grid.size());
+  IntegrandValues<S> f = integrandValues<S>(c.piece_grid.size());
   std::vector<S> ends;
   for (std::size_t j = 0; j < sw.size(); ++j)
     ends.push_back(switchTimeWithDerivative(c, pieces, static_cast<int>(j)));
@@ -594,10 +599,9 @@ std::array<S, 4> integrateDsPiecewise(EvalContext<S>& c, const DsPieces& pieces)
     const auto ts = mappedNodes(c.piece_grid, a, b);
     for (int k = 0; k < c.piece_grid.size(); ++k) {
       const PhaseSample<S> s = dsSample(c.model, c.options, mo, S(ts(k)), pieces.branches[piece]);
-      const std::array<S, 4> in = criteriaIntegrands(c.model, s);
-      for (int i = 0; i < 4; ++i) f[i](k) = in[i];
+      setIntegrands(c.model, s, k, S(1.0), f);
     }
-    const std::array<S, 4> part = integrateEach(c.piece_grid, f, a, b);
+    const std::array<S, 4> part = integrateCriteria(c.piece_grid, f, a, b, c.out.criteria_kinks);
     for (int i = 0; i < 4; ++i) total[i] += part[i];
   }
   return total;
@@ -608,8 +612,7 @@ template <class S> std::array<S, 4> dsMotionStage(EvalContext<S>& c, ConstraintS
   GaitMotion<S>& mo = c.out.motion;
   const GaitOptions& o = c.options;
   const int nds = c.ds_grid.size();
-  std::array<Eigen::Matrix<S, Eigen::Dynamic, 1>, 4> ds_int;
-  for (auto& v : ds_int) v.resize(nds);
+  IntegrandValues<S> ds_int = integrandValues<S>(nds);
   const auto ts = mappedNodes(c.ds_grid, S(0.0), mo.T_DS);
   std::vector<std::array<double, 6>> switching(nds);
   std::vector<int> branch(nds);
@@ -621,12 +624,12 @@ template <class S> std::array<S, 4> dsMotionStage(EvalContext<S>& c, ConstraintS
     setContactConstraints(c, kFrictionConeDS, kNormalForceDS, 0, 2, k, s.R1, st);
     setContactConstraints(c, kFrictionConeDS, kNormalForceDS, 1, 2, k, s.R2, st);
     c.set(kDsMonotone, k, s.qd(0) - o.ds_alphadot_max, st);  // (3.43)
-    const std::array<S, 4> in = criteriaIntegrands(c.model, s);
-    for (int i = 0; i < 4; ++i) ds_int[i](k) = in[i];
+    setIntegrands(c.model, s, k, S(1.0), ds_int);
   }
   c.out.ds_pieces = c.known_pieces ? *c.known_pieces : dsPieces(c, ts, branch, switching);
-  return c.out.ds_pieces.switch_times.empty() ? integrateEach(c.ds_grid, ds_int, S(0.0), mo.T_DS)
-                                              : integrateDsPiecewise(c, c.out.ds_pieces);
+  return c.out.ds_pieces.switch_times.empty()
+             ? integrateCriteria(c.ds_grid, ds_int, S(0.0), mo.T_DS, c.out.criteria_kinks)
+             : integrateDsPiecewise(c, c.out.ds_pieces);
 }
 
 template <class S>
@@ -635,8 +638,7 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
   const GaitOptions& o = c.options;
   const ConstraintState st = c.stateAbove(4);
   const int nss = c.ss_grid.size();
-  std::array<Eigen::Matrix<S, Eigen::Dynamic, 1>, 4> ss_int;
-  for (auto& v : ss_int) v.resize(nss);
+  IntegrandValues<S> ss_int = integrandValues<S>(nss);
   for (int k = 0; k < nss; ++k) {
     const S& ad = mo.ss_alphadot(k);
     const PhaseSample<S> s = ssSample(c.model, pts[k], ad, mo.ss_alphaddot(k));
@@ -646,17 +648,16 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
       const S x = s.foot2(0) / mo.d;
       c.set(kClearance, k - 1, -(s.foot2(1) - o.clearance_height * (1.0 - x * x)), st);
     }
-    const std::array<S, 4> in = criteriaIntegrands(c.model, s);
-    for (int i = 0; i < 4; ++i) ss_int[i](k) = in[i] / ad;  // dt = dα / α̇ (3.29)
+    setIntegrands(c.model, s, k, ad, ss_int);  // dt = dα / α̇ (3.29)
   }
+  const std::array<S, 4> ss_total =
+      integrateCriteria(c.ss_grid, ss_int, mo.alpha_iSS, mo.alpha_fSS, c.out.criteria_kinks);
+  c.out.ss_criteria_kinks = static_cast<int>(c.out.criteria_kinks.size());
   // Without DS the impact's energy loss is resupplied by the motors within the SS (cyclicity).
   std::array<S, 4> ds_total{S(0.0), S(0.0), S(0.0), S(0.0)};
   if (o.parameterisation.hasDoubleSupport()) ds_total = dsMotionStage(c, st);
   std::array<S, 4> crit;
-  for (int i = 0; i < 4; ++i)
-    crit[i] = (integrateOverInterval(c.ss_grid, ss_int[i], mo.alpha_iSS, mo.alpha_fSS) +
-               ds_total[i]) /
-              mo.d;  // (3.28)
+  for (int i = 0; i < 4; ++i) crit[i] = (ss_total[i] + ds_total[i]) / mo.d;  // (3.28)
   c.out.C_Gamma = crit[0];
   c.out.C_E = crit[1];
   c.out.W = crit[2];
@@ -683,6 +684,8 @@ template <class S> void discardNonFiniteMotion(EvalContext<S>& c) {
       out.state[k] = ConstraintState::NotComputed;
     }
   out.C_Gamma = out.C_E = out.W = out.C_frott = S(0.0);
+  out.criteria_kinks.clear();
+  out.ss_criteria_kinks = 0;
   if (!std::isfinite(valueOf(out.T_SS)) || !std::isfinite(valueOf(out.speed)))
     out.T_SS = out.speed = out.alphadot_fSS = S(0.0);
   out.motion_computed = false;

@@ -44,6 +44,10 @@ class ChebyshevGrid {
   // Cumulative integration anchored at s = +1: (Q f)_k ≈ ∫_{+1}^{s_k} f(s) ds (integrating
   // DOWN from +1, so negative for positive f); exact for polynomials of degree <= n.
   const Eigen::MatrixXd& cumulative() const { return cumulative_; }
+  // Row r(s) with r(s)·f = ∫_{+1}^{s} p(t) dt for the interpolant p of f, at any s in [-1, 1]
+  // (row k of cumulative() at node k); what an integral between two points that are not nodes,
+  // e.g. the roots where a kinked integrand is split, needs.
+  Eigen::RowVectorXd cumulativeAt(double s) const;
   // Spectral differentiation: (D f)_k = p'(s_k) for the interpolant p of f; lets callers get
   // nodal rates (e.g. velocities) of integrated quantities without finite differences.
   const Eigen::MatrixXd& differentiation() const { return differentiation_; }
@@ -133,6 +137,7 @@ class ChebyshevGrid {
   Eigen::VectorXd nodes_;
   Eigen::VectorXd weights_;
   Eigen::MatrixXd cumulative_;
+  Eigen::MatrixXd antiderivative_;  // nodal values -> Chebyshev coefficients of an antiderivative
   Eigen::MatrixXd differentiation_;
   Eigen::VectorXd barycentric_;
 };
