@@ -71,15 +71,8 @@ std::vector<ExportRow> exportRows(const Model& plant, const WalkResult& r) {
       foot1_x = next_foot1_x;
     const Leg stance = (s.step % 2 == 0) == s.single_support ? Leg::Left : Leg::Right;
     // exportRow reads the motion columns only; the drawing aids keep their defaults.
-    TrajectoryRow tr{};
-    tr.t = s.t;
-    tr.phase = s.single_support ? Phase::SingleSupport : Phase::DoubleSupport;
-    tr.q = s.q;
-    tr.qd = s.qd;
-    tr.qdd = s.qdd;
-    tr.gamma_star = s.gamma_star;
-    tr.R1 = s.R1;
-    tr.R2 = s.R2;
+    TrajectoryRow tr =
+        motionRow(s.t, s.single_support ? Phase::SingleSupport : Phase::DoubleSupport, s);
     tr.foot2 = foot2;
     tr.com = chainPoint(plant.pinned.b, st) / plant.total_mass;
     rows.push_back(exportRow(plant, tr, s.step, stance, foot1_x, s.t));

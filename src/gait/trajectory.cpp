@@ -29,15 +29,7 @@ void addDrawingPoints(const Model& m, TrajectoryRow& r) {
 
 TrajectoryRow toRow(const GaitEvaluator& ev, const GaitMotion<double>& mo, double t, Phase phase,
                     const detail::PhaseSample<double>& s) {
-  TrajectoryRow r;
-  r.t = t;
-  r.phase = phase;
-  r.q = s.q;
-  r.qd = s.qd;
-  r.qdd = s.qdd;
-  r.gamma_star = s.gamma_star;
-  r.R1 = s.R1;
-  r.R2 = s.R2;
+  TrajectoryRow r = motionRow(t, phase, s);
   r.foot2 = s.foot2;
   r.com = s.com;
   const Model& m = ev.model();

@@ -31,6 +31,22 @@ struct TrajectoryRow {
   std::optional<double> zd_potential;  // SS only: −Φ(α)/2, so σ²/2 + it is constant (3.14)
 };
 
+// A row's time, phase and motion (q, q̇, q̈, Γ*, R1, R2) from any sample that has those
+// members (the evaluator's phase samples, the closed loop's walk samples).
+template <class Sample>
+TrajectoryRow motionRow(double t, Phase phase, const Sample& s) {
+  TrajectoryRow r{};
+  r.t = t;
+  r.phase = phase;
+  r.q = s.q;
+  r.qd = s.qd;
+  r.qdd = s.qdd;
+  r.gamma_star = s.gamma_star;
+  r.R1 = s.R1;
+  r.R2 = s.R2;
+  return r;
+}
+
 // Requires evaluation.motion_computed.
 std::vector<TrajectoryRow> sampleTrajectory(const GaitEvaluator& evaluator,
                                             const GaitEvaluation<double>& evaluation,
