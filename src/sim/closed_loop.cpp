@@ -122,7 +122,6 @@ PolyValue<double> ssReference(const ClosedLoop& s, int j, double alpha) {
 // landing (ClosedLoopOptions::hold_references_past_fss: only the freeze brings its foot down).
 Vec4 ssControl(const ClosedLoop& s, const Vec5& q, const Vec5& qd, ClosedLoopPoint& e) {
   const Model& c = s.controller;
-  const GaitMotion<double>& mo = s.motion;
   const PinnedTerms<double> t = pinnedTerms(c, q, qd);
   Eigen::Matrix<double, 4, 5> B = Eigen::Matrix<double, 4, 5>::Zero();
   Vec4 curvature;

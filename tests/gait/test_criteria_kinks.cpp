@@ -86,7 +86,10 @@ TEST_CASE("split points of W and C_E: implicit-function derivatives equal finite
                      impact.parameters);
   int checked = 0, with_ds_kinks = 0;
   double worst = 0.0;
-  for (const auto& [ev, p] : cases) {
+  for (const auto& c : cases) {
+    const GaitEvaluator& ev = c.first;  // references, not a structured binding: C++17 lambdas
+                                        // (clang) cannot capture one
+    const GaitParameters& p = c.second;
     const GaitGradient gr = ev.evaluateWithGradient(p);
     const std::vector<double>& kinks = gr.value.criteria_kinks;
     REQUIRE(kinks.size() > 2);
