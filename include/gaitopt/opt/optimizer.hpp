@@ -68,6 +68,8 @@ struct OptimizationResult {
   double constraint_violation = 0.0;  // max over all levels and the speed, unscaled
   int unmet_level = -1;               // lowest level with an unmet constraint
   std::vector<std::string> unmet_constraints;
+  // Worst scaled phase-wise value on the 10× finer check (gait/feasibility.hpp).
+  double between_nodes_worst = 0.0;
   std::vector<StageReport> stages;
 };
 
