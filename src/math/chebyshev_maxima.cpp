@@ -6,10 +6,10 @@
 namespace gaitopt {
 namespace {
 
-// Samples per interval before the Newton refinement: the interpolant of degree n has at most
-// one or two extrema between neighbouring nodes, so a few points bracket the maximum.
+// Sub-intervals per interval: the interpolant of degree n has at most one or two extrema
+// between neighbouring nodes, so the sample brackets the maximum for Newton.
 constexpr int kSamples = 6;
-constexpr int kNewtonSteps = 6;
+constexpr int kNewtonSteps = 8;
 
 }  // namespace
 
@@ -25,36 +25,59 @@ Eigen::VectorXd lagrangeBasis(const ChebyshevGrid& grid, double s) {
   return l / l.sum();
 }
 
-std::vector<InterpolantMaximum> intervalMaxima(const ChebyshevGrid& grid,
-                                               const Eigen::VectorXd& values) {
-  const Eigen::VectorXd& x = grid.nodes();
-  const Eigen::VectorXd slope = grid.differentiation() * values;  // nodal G'
+IntervalMaxima::IntervalMaxima(const ChebyshevGrid& grid) : grid_(grid) {
+  const int per = kSamples - 1;
+  sample_s_.resize(grid.degree() * per);
+  sample_.resize(sample_s_.size(), grid.size());
+  for (int k = 0; k < grid.degree(); ++k)
+    for (int i = 0; i < per; ++i) {
+      const double lo = grid.nodes()[k + 1], hi = grid.nodes()[k];
+      const int row = k * per + i;
+      sample_s_[row] = lo + (hi - lo) * (i + 1) / kSamples;
+      sample_.row(row) = lagrangeBasis(grid, sample_s_[row]).transpose();
+    }
+}
+
+std::vector<InterpolantMaximum> IntervalMaxima::operator()(const Eigen::VectorXd& values) const {
+  const Eigen::VectorXd& x = grid_.nodes();
+  const Eigen::VectorXd samples = sample_ * values;
+  const Eigen::VectorXd slope = grid_.differentiation() * values;  // nodal G'
   std::vector<InterpolantMaximum> out;
-  for (int k = 0; k < grid.degree(); ++k) {
+  const int per = kSamples - 1;
+  for (int k = 0; k < grid_.degree(); ++k) {
     const double lo = x[k + 1], hi = x[k];
-    InterpolantMaximum best{hi, values[k]};
-    if (values[k + 1] > best.value) best = {lo, values[k + 1]};
-    double start = lo;
-    double start_value = -INFINITY;
-    for (int i = 1; i < kSamples; ++i) {
-      const double s = lo + (hi - lo) * i / kSamples;
-      const double v = grid.interpolate(values, s);
-      if (v > start_value) start = s, start_value = v;
-    }
-    // Newton on G'(s) = 0 from the best interior sample, kept inside the interval.
-    double s = start;
-    for (int it = 0; it < kNewtonSteps; ++it) {
-      const auto [d1, d2] = grid.interpolateWithDerivative(slope, s);
-      if (!(d2 < 0.0)) break;
-      s = std::clamp(s - d1 / d2, lo, hi);
-    }
-    for (const double c : {start, s}) {
-      const double v = grid.interpolate(values, c);
-      if (v > best.value) best = {c, v};
-    }
+    // The higher node, and whether G rises from it into the interval (then the maximum is
+    // inside even when no sample shows it).
+    const bool high = values[k] >= values[k + 1];
+    InterpolantMaximum best = high ? InterpolantMaximum{hi, values[k]}
+                                   : InterpolantMaximum{lo, values[k + 1]};
+    bool inside = high ? slope[k] < 0.0 : slope[k + 1] > 0.0;
+    for (int i = 0; i < per; ++i)
+      if (samples[k * per + i] > best.value) {
+        best = {sample_s_[k * per + i], samples[k * per + i]};
+        inside = true;
+      }
+    if (inside) best = refine(values, slope, best, lo, hi);
     out.push_back(best);
   }
   return out;
+}
+
+// Newton on G'(s) = 0 from `start`, kept in [lo, hi]; the better of start and result.
+InterpolantMaximum IntervalMaxima::refine(const Eigen::VectorXd& values,
+                                          const Eigen::VectorXd& slope, InterpolantMaximum start,
+                                          double lo, double hi) const {
+  double s = start.s;
+  for (int it = 0; it < kNewtonSteps; ++it) {
+    const auto [d1, d2] = grid_.interpolateWithDerivative(slope, s);
+    if (!(d2 < 0.0)) break;
+    const double next = std::clamp(s - d1 / d2, lo, hi);
+    const bool done = std::abs(next - s) < 1e-14;
+    s = next;
+    if (done) break;
+  }
+  const double v = grid_.interpolate(values, s);
+  return v > start.value ? InterpolantMaximum{s, v} : start;
 }
 
 }  // namespace gaitopt

@@ -67,13 +67,17 @@ struct BetweenNodeRow {
 
 class BetweenNodeRows {
  public:
-  BetweenNodeRows(const GaitEvaluator& ev, const std::vector<int>& entries) : ev_(ev) {
+  BetweenNodeRows(const GaitEvaluator& ev, const std::vector<int>& entries)
+      : ev_(ev), ss_(ev.ssGrid()), ds_(ev.dsGrid()) {
     const ConstraintLayout& layout = ev.layout();
     for (int k : entries) {
       BetweenNodeRow r;
       for (int id = 0; id < kNumConstraintGroups; ++id) {
         const ConstraintGroup& g = layout[id];
-        if (g.phase == ConstraintPhase::None || k < g.offset || k >= g.offset + g.count) continue;
+        // Single support only: the DS values have kinks where the force split switches branch
+        // (ds_switch_times), across which the interpolant oscillates (measured: C&A infeasible).
+        if (g.phase != ConstraintPhase::SingleSupport || k < g.offset || k >= g.offset + g.count)
+          continue;
         const int node = (k - g.offset) / g.per_point + g.first_point;
         const int last = grid(g).degree() - (id == kClearance ? 1 : 0);
         if (node < last) r = {id, (k - g.offset) % g.per_point, node};
@@ -91,7 +95,8 @@ class BetweenNodeRows {
         if (e.state[k] == ConstraintState::NotComputed) return false;
         values[node] = e.g[k];
       }
-      maxima_[key(r)] = intervalMaxima(grid(ev_.layout()[r.group]), values);
+      const bool ss = ev_.layout()[r.group].phase == ConstraintPhase::SingleSupport;
+      maxima_[key(r)] = (ss ? ss_ : ds_)(values);
     }
     return true;
   }
@@ -125,6 +130,7 @@ class BetweenNodeRows {
   }
 
   const GaitEvaluator& ev_;
+  IntervalMaxima ss_, ds_;
   std::vector<BetweenNodeRow> rows_;
   std::map<int, std::vector<InterpolantMaximum>> maxima_;
 };

@@ -115,7 +115,8 @@ void solveStage(GaitEvaluationCache& cache, NlpSolution& sol, std::vector<int>& 
   for (int round = 0; round < kMaxExchangeRounds; ++round) {
     NlpProblem problem(gaitVariables(ev.model(), sol.x, ev.options().parameterisation));
     build(problem);
-    problem.addConstraints(makeHierarchyConstraints(cache, entries, interior, level5_interior));
+    problem.addConstraints(
+        makeHierarchyConstraints(cache, entries, interior, level5_interior, s.between_nodes));
     const std::string name = label + " (" + std::to_string(entries.size()) + " grid entries)";
     const NlpSolution next = solve(problem, s, name, carryMultipliers(sol, previous, entries), log);
     result.stages.push_back({name, next.status, next.iterations});

@@ -19,9 +19,21 @@ struct InterpolantMaximum {
 // Lagrange basis at s: G(s) = l(s)·values for any nodal values (a unit vector at a node).
 Eigen::VectorXd lagrangeBasis(const ChebyshevGrid& grid, double s);
 
-// For each interval k = 0..n−1 between nodes s_{k+1} < s_k, the maximum of the interpolant of
-// `values` over the closed interval: the best of a dense sample refined by Newton on G' = 0.
-std::vector<InterpolantMaximum> intervalMaxima(const ChebyshevGrid& grid,
-                                               const Eigen::VectorXd& values);
+class IntervalMaxima {
+ public:
+  explicit IntervalMaxima(const ChebyshevGrid& grid);
+  // For each interval k = 0..n−1 between nodes s_{k+1} < s_k, the maximum of the interpolant
+  // of `values` over the closed interval: a sample of each interval (one matrix product), then
+  // Newton on G' = 0 where a sample beats both nodes or G rises from the higher node inwards.
+  std::vector<InterpolantMaximum> operator()(const Eigen::VectorXd& values) const;
+
+ private:
+  InterpolantMaximum refine(const Eigen::VectorXd& values, const Eigen::VectorXd& slope,
+                            InterpolantMaximum start, double lo, double hi) const;
+
+  const ChebyshevGrid& grid_;
+  Eigen::VectorXd sample_s_;  // interior sample points, kSamples − 1 per interval
+  Eigen::MatrixXd sample_;    // interpolation matrix onto them
+};
 
 }  // namespace gaitopt

@@ -33,6 +33,9 @@ struct SolverSettings {
   // on the full grid after each solve); false: every grid entry in one NLP.
   bool constraint_exchange = false;  // measured: SLSQP stalls with it, Ipopt gains (README)
   GradientMode gradients = GradientMode::Exact;
+  // Phase-wise rows as the interpolant's maxima between the nodes (opt/gait_problem.hpp), so
+  // the semi-infinite constraints hold on the whole phase; false: at the nodes only.
+  bool between_nodes = true;
   int max_restarts = 3;  // of the full stage, from the last point, when it ends unmet
   // When the full stage still ends with an unmet constraint: the nearest point meeting every
   // level and the speed, then the full stage again from there (README "Global search"). Off
