@@ -96,13 +96,7 @@ class BetweenNodeRows {
         values[node] = e.g[k];
       }
       const bool ss = ev_.layout()[r.group].phase == ConstraintPhase::SingleSupport;
-      std::vector<InterpolantMaximum> m = (ss ? ss_ : ds_)(values);
-      // A maximum at the interval's far node is that node's own row: the interval's row is
-      // then its own node, so that no two rows coincide (nearly dependent rows stall SLSQP).
-      const Eigen::VectorXd& x = grid(ev_.layout()[r.group]).nodes();
-      for (int j = 0; j < static_cast<int>(m.size()); ++j)
-        if (m[j].s == x[j + 1]) m[j] = {x[j], values[j]};
-      maxima_[key(r)] = std::move(m);
+      maxima_[key(r)] = (ss ? ss_ : ds_)(values);
     }
     return true;
   }
