@@ -87,13 +87,15 @@ std::string progressText(const GaitEvaluator& ev, const GaitEvaluation<double>& 
            std::to_string(e.failed_level) + ")";
   // The worst entry relative to its group's typical magnitude, as the optimiser weighs them.
   int worst_group = -1;
-  double worst_scaled = 0.0, worst_value = 0.0;
+  double worst_scaled = -1.0, worst_value = 0.0;
   const bool evaluated = static_cast<int>(e.g.size()) == ev.layout().size();
   for (int id = 0; evaluated && id < kNumConstraintGroups; ++id) {
     const ConstraintGroup& g = ev.layout()[id];
     for (int k = g.offset; k < g.offset + g.count; ++k) {
-      if (e.state[k] == ConstraintState::NotComputed || !(e.g[k] > 0.0)) continue;
+      if (e.state[k] == ConstraintState::NotComputed) continue;
       const double scaled = e.g[k] / constraintScale(ev.layout(), ev.model(), k);
+      // The shared tolerance (gait/feasibility.hpp): what is within it holds.
+      if (!(scaled > kFeasibilityTolerance)) continue;
       if (scaled > worst_scaled) {
         worst_scaled = scaled;
         worst_value = e.g[k];

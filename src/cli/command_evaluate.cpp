@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "gaitopt/io/atomic_file.hpp"
 #include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/gait/feasibility.hpp"
 #include "gaitopt/gait/summary.hpp"
 #include "gaitopt/gait/trajectory.hpp"
 #include "gaitopt/io/gait_file.hpp"
@@ -60,13 +61,21 @@ void registerEvaluateCommand(CLI::App& app, int& exit_code) {
     staged.commit();
 
     const bool criteria = defined && e.motion_computed;
-    std::cout << "evaluate: " << (defined ? "ok" : "undefined") << ", failed level "
-              << (e.failed_level < 0 ? std::string("none") : std::to_string(e.failed_level))
+    const FeasibilityVerdict verdict = feasibilityVerdict(evaluator, gait.parameters, e);
+    std::cout << "evaluate: " << (defined ? "ok" : "undefined") << ", "
+              << (verdict.feasible ? "feasible" : "not feasible") << ", failed level "
+              << (verdict.failed_level < 0 ? std::string("none")
+                                           : std::to_string(verdict.failed_level))
               << ", C_Gamma " << (criteria ? shortNumber(e.C_Gamma) + " N^2 m s" : "n/a")
               << ", speed "
               << (zeroDynamicsComputed(evaluator, e) ? shortNumber(e.speed, "%.4g") + " m/s"
                                                      : std::string("n/a"))
-              << ", max violation " << shortNumber(maxDefinedViolation(e), "%.4g") << " -> "
+              << ", max violation " << shortNumber(maxDefinedViolation(e), "%.4g")
+              << ", between nodes (10x) "
+              << (verdict.between_nodes.worst_group < 0
+                      ? std::string("n/a")
+                      : shortNumber(verdict.between_nodes.worst_scaled, "%.3g") + " scaled")
+              << " -> "
               << args->out << "\n";
     exit_code = defined ? 0 : kExitUndefined;
   });

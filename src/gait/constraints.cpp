@@ -1,8 +1,39 @@
 #include "gaitopt/gait/constraints.hpp"
 
+#include <cmath>
+
 #include "gaitopt/gait/impact_landing.hpp"
+#include "gaitopt/model/model.hpp"
 
 namespace gaitopt {
+namespace {
+
+ConstraintPhase phaseOf(int id) {
+  if (id == kFPositive || id == kNoFallBack || (id >= kTorqueSS && id <= kClearance))
+    return ConstraintPhase::SingleSupport;
+  if (id == kDsReachMax || id == kDsReachMin || (id >= kTorqueDS && id <= kDsMonotone))
+    return ConstraintPhase::DoubleSupport;
+  return ConstraintPhase::None;
+}
+
+}  // namespace
+
+// Typical magnitude of each constraint group's values (so Ipopt sees O(1) rows).
+double constraintGroupScale(int group, const Model& m) {
+  const double reach = std::pow(m.robot.l4 + m.robot.l5, 2);
+  const double weight = m.total_mass * m.gravity;
+  switch (group) {
+    case kReachMaxIDS: case kReachMinIDS: case kReachMaxFDS: case kReachMinFDS:
+    case kReachMaxInt: case kReachMinInt: case kDsReachMax: case kDsReachMin:
+      return reach;
+    case kFPositive: return 10.0;
+    case kTorqueSS: case kTorqueDS: return m.robot.envelope.torque[0];
+    case kFrictionConeSS: case kFrictionConeDS: case kNormalForceSS: case kNormalForceDS:
+      return weight;
+    case kClearance: return 0.05;
+    default: return 1.0;  // angles [rad], angular rates [rad/s], κ
+  }
+}
 
 ConstraintLayout::ConstraintLayout(const GaitOptions& o) {
   const int ss = o.ss_nodes + 1;
@@ -50,8 +81,14 @@ ConstraintLayout::ConstraintLayout(const GaitOptions& o) {
       {"impact_rate_ratio", 1, "(3.23)", impact ? 1 : 0},
       {"impact_orbit", 3, "(3.14)", single ? 1 : 0},
   };
-  for (const Spec& s : specs) {
-    groups_.push_back({s.name, s.level, s.equation, size_, s.count});
+  for (int id = 0; id < kNumConstraintGroups; ++id) {
+    const Spec& s = specs[id];
+    const ConstraintPhase phase = phaseOf(id);
+    const int points = phase == ConstraintPhase::SingleSupport
+                           ? ss - (id == kClearance ? 2 : 0)
+                           : phase == ConstraintPhase::DoubleSupport ? ds : 1;
+    groups_.push_back({s.name, s.level, s.equation, size_, s.count, phase,
+                       points > 0 ? s.count / points : 0, id == kClearance ? 1 : 0});
     size_ += s.count;
     entry_level_.insert(entry_level_.end(), s.count, s.level);
   }

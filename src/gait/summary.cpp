@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include "gaitopt/gait/feasibility.hpp"
 #include "gaitopt/gait/impact_landing.hpp"
 
 namespace gaitopt {
@@ -73,6 +74,24 @@ void writeImpactSummary(JsonWriter& w, const GaitEvaluator& ev, const GaitEvalua
   w.endObject();
 }
 
+// The 10× finer check of the phase-wise constraints; null when the motion was not computed.
+void writeBetweenNodes(JsonWriter& w, const GaitEvaluator& ev, const BetweenNodesCheck& b,
+                       bool computed) {
+  w.key("between_nodes");
+  if (!computed || !b.computed || b.worst_group < 0) {
+    w.null();
+    return;
+  }
+  w.beginObject();
+  w.key("ss_nodes").value(b.ss_nodes);
+  w.key("ds_nodes").value(b.ds_nodes);
+  w.key("worst_constraint").value(ev.layout()[b.worst_group].name);
+  w.key("worst_value").value(b.worst_value);
+  w.key("worst_scaled").value(b.worst_scaled);
+  w.key("satisfied").value(b.worst_scaled <= kFeasibilityTolerance);
+  w.endObject();
+}
+
 }  // namespace
 
 const char* constraintGroupUnit(int id) {
@@ -98,7 +117,8 @@ const char* constraintGroupUnit(int id) {
 }
 
 ConstraintGroupSummary summarizeConstraintGroup(const ConstraintGroup& group,
-                                                const GaitEvaluation<double>& e) {
+                                                const GaitEvaluation<double>& e,
+                                                double tolerance) {
   ConstraintGroupSummary s;
   double worst = -std::numeric_limits<double>::infinity();
   bool nan = false;  // a Defined NaN would be an evaluator bug: report the group as null
@@ -108,7 +128,7 @@ ConstraintGroupSummary summarizeConstraintGroup(const ConstraintGroup& group,
     ++s.defined;
     nan = nan || std::isnan(g);
     if (g > worst) worst = g;
-    if (g > 0.0) ++s.violated;
+    if (!(g <= tolerance)) ++s.violated;
   }
   s.value = s.defined > 0 && !nan ? worst : std::numeric_limits<double>::quiet_NaN();
   return s;
@@ -135,12 +155,20 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
   const GaitOptions& o = ev.options();
 
   w.key("status").value(defined ? "ok" : "undefined");
+  // The one verdict (gait/feasibility.hpp): node entries, between nodes and speed.
+  const FeasibilityVerdict verdict = feasibilityVerdict(ev, p, e);
+  w.key("feasible").value(verdict.feasible);
   w.key("failed_level");
-  if (e.failed_level < 0) {
+  if (verdict.failed_level < 0) {
     w.null();
   } else {
-    w.value(e.failed_level);
+    w.value(verdict.failed_level);
   }
+  w.key("unmet_constraints").beginArray();
+  for (const std::string& name : verdict.unmet_groups) w.value(name);
+  w.endArray();
+  w.key("feasibility_tolerance").value(kFeasibilityTolerance);
+  writeBetweenNodes(w, ev, verdict.between_nodes, e.motion_computed);
   w.key("motion_computed").value(e.motion_computed);
   w.key("numerically_undefined").value(e.numerically_undefined);
   w.key("robot").value(ev.model().robot.name);
@@ -178,7 +206,8 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
   for (int id = 0; id < static_cast<int>(ev.layout().groups().size()); ++id) {
     const ConstraintGroup& g = ev.layout()[id];
     if (g.count == 0) continue;  // a group this gait family does not have
-    const ConstraintGroupSummary s = summarizeConstraintGroup(g, e);
+    const double tolerance = kFeasibilityTolerance * constraintGroupScale(id, ev.model());
+    const ConstraintGroupSummary s = summarizeConstraintGroup(g, e, tolerance);
     const bool has_value = s.defined > 0 && std::isfinite(s.value);
     w.beginObject();
     w.key("name").value(g.name);
@@ -191,7 +220,7 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
     numberOrNull(w, has_value, s.value);
     w.key("satisfied");
     if (has_value) {
-      w.value(s.value <= 0.0);
+      w.value(s.value <= tolerance);
     } else {
       w.null();
     }
@@ -244,7 +273,8 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
       {"T_SS", "s"}, {"T_DS", "s"}, {"alphadot_fSS", "rad/s"},
       {"ds_switch_times", "s from the start of double support"},
       {"parameters", "rad, m, s; delta*s_* are d(delta)/d(alpha), alphadot_iSS rad/s"},
-      {"constraints", "per group, see 'unit'; satisfied when value <= 0"},
+      {"constraints", "per group, see 'unit'; satisfied when value <= 1e-6 x the group's scale"},
+      {"between_nodes", "worst_value in its group's unit, worst_scaled = value / group scale"},
   };
   w.key("units").beginObject();
   for (const auto& [key, unit] : kUnits) w.key(key).value(unit);

@@ -1,6 +1,9 @@
 #include "gaitopt/opt/gait_problem.hpp"
 
 #include <cmath>
+#include <map>
+
+#include "gaitopt/math/chebyshev_maxima.hpp"
 
 namespace gaitopt {
 namespace {
@@ -53,11 +56,91 @@ class DistanceCost : public CostTerm {
   GaitParameters ref_, w_;
 };
 
+// Where a phase-wise entry's row is taken between the nodes: the entry at node j stands for
+// the interval [s_{j+1}, s_j] (the last node for itself), so that the rows hold the
+// constraint on the whole phase with as many rows as nodes. The clearance has no entry at the
+// phase ends (its value is 0 there): its end intervals are not rows.
+struct BetweenNodeRow {
+  int group = -1;             // −1: a row at its own entry
+  int sub = 0, interval = 0;  // entry within the point, interval of the phase's grid
+};
+
+class BetweenNodeRows {
+ public:
+  BetweenNodeRows(const GaitEvaluator& ev, const std::vector<int>& entries)
+      : ev_(ev), ss_(ev.ssGrid()), ds_(ev.dsGrid()) {
+    const ConstraintLayout& layout = ev.layout();
+    for (int k : entries) {
+      BetweenNodeRow r;
+      for (int id = 0; id < kNumConstraintGroups; ++id) {
+        const ConstraintGroup& g = layout[id];
+        // Single support only: the DS values have kinks where the force split switches branch
+        // (ds_switch_times), across which the interpolant oscillates (measured: C&A infeasible).
+        if (g.phase != ConstraintPhase::SingleSupport || k < g.offset || k >= g.offset + g.count)
+          continue;
+        const int node = (k - g.offset) / g.per_point + g.first_point;
+        const int last = grid(g).degree() - (id == kClearance ? 1 : 0);
+        if (node < last) r = {id, (k - g.offset) % g.per_point, node};
+      }
+      rows_.push_back(r);
+    }
+  }
+  // The interval maxima of every row's sequence at an evaluation (false: one is not computed).
+  bool update(const GaitEvaluation<double>& e) {
+    maxima_.clear();
+    for (const BetweenNodeRow& r : rows_) {
+      if (r.group < 0 || maxima_.count(key(r))) continue;
+      Eigen::VectorXd values = Eigen::VectorXd::Zero(grid(ev_.layout()[r.group]).size());
+      for (const auto& [node, k] : sequence(r)) {
+        if (e.state[k] == ConstraintState::NotComputed) return false;
+        values[node] = e.g[k];
+      }
+      const bool ss = ev_.layout()[r.group].phase == ConstraintPhase::SingleSupport;
+      maxima_[key(r)] = (ss ? ss_ : ds_)(values);
+    }
+    return true;
+  }
+  int size() const { return static_cast<int>(rows_.size()); }
+  bool between(int row) const { return rows_[row].group >= 0; }
+  double value(int row) const { return maximum(row).value; }
+  // Envelope theorem: Σ_m l_m(s*) ∇g_m.
+  VectorX gradient(int row, const MatrixX& dg) const {
+    const BetweenNodeRow& r = rows_[row];
+    const Eigen::VectorXd l = lagrangeBasis(grid(ev_.layout()[r.group]), maximum(row).s);
+    VectorX out = VectorX::Zero(dg.cols());
+    for (const auto& [node, k] : sequence(r)) out += l[node] * dg.row(k).transpose();
+    return out;
+  }
+
+ private:
+  const ChebyshevGrid& grid(const ConstraintGroup& g) const {
+    return g.phase == ConstraintPhase::SingleSupport ? ev_.ssGrid() : ev_.dsGrid();
+  }
+  static int key(const BetweenNodeRow& r) { return r.group * 64 + r.sub; }
+  const InterpolantMaximum& maximum(int row) const {
+    return maxima_.at(key(rows_[row]))[rows_[row].interval];
+  }
+  // (node, layout entry) of every entry of a row's sequence.
+  std::vector<std::pair<int, int>> sequence(const BetweenNodeRow& r) const {
+    const ConstraintGroup& g = ev_.layout()[r.group];
+    std::vector<std::pair<int, int>> out;
+    for (int i = 0; i < g.count / g.per_point; ++i)
+      out.emplace_back(i + g.first_point, g.offset + i * g.per_point + r.sub);
+    return out;
+  }
+
+  const GaitEvaluator& ev_;
+  IntervalMaxima ss_, ds_;
+  std::vector<BetweenNodeRow> rows_;
+  std::map<int, std::vector<InterpolantMaximum>> maxima_;
+};
+
 class HierarchyConstraints : public ConstraintSet {
  public:
   HierarchyConstraints(GaitEvaluationCache& cache, const std::vector<int>& entries,
-                       double interior, double level5_interior)
-      : cache_(cache), rows_(entries), interior_(interior), level5_interior_(level5_interior) {
+                       double interior, double level5_interior, bool between_nodes)
+      : cache_(cache), rows_(entries), interior_(interior), level5_interior_(level5_interior),
+        between_(cache.evaluator(), between_nodes ? entries : std::vector<int>()) {
     const ConstraintLayout& layout = cache.evaluator().layout();
     for (int e : rows_) scales_.push_back(constraintScale(layout, cache.evaluator().model(), e));
   }
@@ -73,27 +156,35 @@ class HierarchyConstraints : public ConstraintSet {
   }
   bool values(const VectorX& x, Eigen::Ref<VectorX> g) override {
     const GaitEvaluation<double>& e = cache_.values(toParameters(x));
+    if (!between_.update(e)) return false;
     for (int i = 0; i < size(); ++i) {
       if (e.state[rows_[i]] == ConstraintState::NotComputed) return false;
-      g(i) = e.g[rows_[i]] / scales_[i];
+      g(i) = (between(i) ? between_.value(i) : e.g[rows_[i]]) / scales_[i];
     }
     return true;
   }
   bool jacobian(const VectorX& x, Eigen::Ref<MatrixX> jac) override {
     const GaitGradient& gr = cache_.gradient(toParameters(x));
+    if (!between_.update(gr.value)) return false;
     for (int i = 0; i < size(); ++i) {
       if (gr.value.state[rows_[i]] == ConstraintState::NotComputed) return false;
-      jac.row(i) = gr.dg.row(rows_[i]) / scales_[i];
+      if (between(i))
+        jac.row(i) = between_.gradient(i, gr.dg).transpose() / scales_[i];
+      else
+        jac.row(i) = gr.dg.row(rows_[i]) / scales_[i];
     }
     return true;
   }
   int layoutEntry(int row) const { return rows_[row]; }
 
  private:
+  bool between(int row) const { return between_.size() > 0 && between_.between(row); }
+
   GaitEvaluationCache& cache_;
   std::vector<int> rows_;
   std::vector<double> scales_;
   double interior_, level5_interior_;
+  BetweenNodeRows between_;
 };
 
 class SpeedConstraint : public ConstraintSet {
@@ -135,23 +226,6 @@ double criterionValue(const GaitEvaluation<double>& e, Criterion c) {
 
 const GaitParameters& criterionGradient(const GaitGradient& g, Criterion c) {
   return c == Criterion::Torque ? g.dC_Gamma : c == Criterion::Energy ? g.dC_E : g.dW;
-}
-
-// Typical magnitude of each constraint group's values (so Ipopt sees O(1) rows).
-double constraintGroupScale(int group, const Model& m) {
-  const double reach = std::pow(m.robot.l4 + m.robot.l5, 2);
-  const double weight = m.total_mass * m.gravity;
-  switch (group) {
-    case kReachMaxIDS: case kReachMinIDS: case kReachMaxFDS: case kReachMinFDS:
-    case kReachMaxInt: case kReachMinInt: case kDsReachMax: case kDsReachMin:
-      return reach;
-    case kFPositive: return 10.0;
-    case kTorqueSS: case kTorqueDS: return m.robot.envelope.torque[0];
-    case kFrictionConeSS: case kFrictionConeDS: case kNormalForceSS: case kNormalForceDS:
-      return weight;
-    case kClearance: return 0.05;
-    default: return 1.0;  // angles [rad], angular rates [rad/s], κ
-  }
 }
 
 const char* criterionName(Criterion c) {
@@ -211,8 +285,10 @@ std::vector<int> hierarchyEntries(const ConstraintLayout& layout, int max_level)
 
 std::unique_ptr<ConstraintSet> makeHierarchyConstraints(GaitEvaluationCache& cache,
                                                         const std::vector<int>& entries,
-                                                        double interior, double level5_interior) {
-  return std::make_unique<HierarchyConstraints>(cache, entries, interior, level5_interior);
+                                                        double interior, double level5_interior,
+                                                        bool between_nodes) {
+  return std::make_unique<HierarchyConstraints>(cache, entries, interior, level5_interior,
+                                                between_nodes);
 }
 
 std::unique_ptr<ConstraintSet> makeSpeedConstraint(GaitEvaluationCache& cache, double speed) {

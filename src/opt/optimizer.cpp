@@ -4,14 +4,15 @@
 #include <chrono>
 #include <cmath>
 
+#include "gaitopt/gait/feasibility.hpp"
 #include "gaitopt/opt/active_set_newton.hpp"
 
 namespace gaitopt {
 namespace {
 
-// A scaled constraint value g/scale at or below this counts as met (ten times the solver's own
-// feasibility tolerance, to absorb the last iterate's slack); also applies to |speed − v|.
-constexpr double kFeasibilityTol = 1e-6;
+// A scaled constraint value g/scale at or below this counts as met, also |speed − v| (the one
+// tolerance of gait/feasibility.hpp).
+constexpr double kFeasibilityTol = kFeasibilityTolerance;
 // Exchange method for the semi-infinite constraints: a grid entry joins the NLP once its
 // scaled value exceeds −kScreenThreshold; the full grid is re-checked after each solve.
 constexpr double kScreenThreshold = 0.3;
@@ -114,7 +115,8 @@ void solveStage(GaitEvaluationCache& cache, NlpSolution& sol, std::vector<int>& 
   for (int round = 0; round < kMaxExchangeRounds; ++round) {
     NlpProblem problem(gaitVariables(ev.model(), sol.x, ev.options().parameterisation));
     build(problem);
-    problem.addConstraints(makeHierarchyConstraints(cache, entries, interior, level5_interior));
+    problem.addConstraints(
+        makeHierarchyConstraints(cache, entries, interior, level5_interior, s.between_nodes));
     const std::string name = label + " (" + std::to_string(entries.size()) + " grid entries)";
     const NlpSolution next = solve(problem, s, name, carryMultipliers(sol, previous, entries), log);
     result.stages.push_back({name, next.status, next.iterations});
@@ -209,27 +211,15 @@ bool closeStage(GaitEvaluationCache& cache, const OptimizationRequest& req, Gait
 
 void classify(const GaitEvaluator& ev, const OptimizationRequest& req, NlpStatus solver_status,
               OptimizationResult& r) {
-  const GaitEvaluation<double>& e = r.evaluation;
-  const ConstraintLayout& layout = ev.layout();
-  r.constraint_violation = 0.0;
-  for (int k = 0; k < layout.size(); ++k)
-    if (e.state[k] != ConstraintState::NotComputed) r.constraint_violation = std::max(r.constraint_violation, e.g[k]);
-  const bool speed_unmet = req.speed && std::abs(e.speed - *req.speed) > kFeasibilityTol;
-  if (req.speed) r.constraint_violation = std::max(r.constraint_violation, std::abs(e.speed - *req.speed));
-  r.unmet_level = lowestViolatedLevel(ev, e, 5);
-  if (speed_unmet && r.unmet_level < 0) r.unmet_level = 5;
-  for (const ConstraintGroup& g : layout.groups())
-    for (int k = 0; k < g.count; ++k)
-      if (g.level == r.unmet_level && e.state[g.offset + k] != ConstraintState::NotComputed &&
-          scaledValue(ev, e, g.offset + k) > kFeasibilityTol) {
-        r.unmet_constraints.push_back(g.name);
-        break;
-      }
-  if (speed_unmet && r.unmet_level == 5) r.unmet_constraints.push_back("speed");
-  // The final point decides first: an unmet constraint is "infeasible" whatever the solver
-  // says; a feasible point is "optimal" only if the solver also converged.
-  const bool feasible = r.unmet_level < 0 && e.motion_computed;
-  if (!feasible) r.status = "infeasible";
+  // The one verdict (gait/feasibility.hpp), between the nodes too: an unmet constraint is
+  // "infeasible" whatever the solver says; a feasible point is "optimal" only if the solver
+  // also converged.
+  const FeasibilityVerdict v = feasibilityVerdict(ev, r.parameters, r.evaluation, req.speed);
+  r.constraint_violation = v.max_violation;
+  r.unmet_level = v.failed_level;
+  r.unmet_constraints = v.unmet_groups;
+  r.between_nodes_worst = v.between_nodes.worst_scaled;
+  if (!v.feasible) r.status = "infeasible";
   else if (solver_status == NlpStatus::Solved) r.status = "optimal";
   else if (solver_status == NlpStatus::MaxIterations) r.status = "max_iter";
   else r.status = "failed";

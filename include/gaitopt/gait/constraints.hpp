@@ -12,6 +12,8 @@
 
 namespace gaitopt {
 
+struct Model;
+
 enum ConstraintGroupId : int {
   kReachMaxIDS, kReachMinIDS, kReachMaxFDS, kReachMinFDS, kReachMaxInt, kReachMinInt,  // level 0
   kAlphaOrderDS, kAlphaOrderSS, kTibiaFront, kTibiaRear,                              // level 1
@@ -27,13 +29,29 @@ enum ConstraintGroupId : int {
 
 constexpr int kNumLevels = 6;
 
+// The one feasibility tolerance of gaitopt: an entry is unmet when its value exceeds
+// kFeasibilityTolerance × its group's typical magnitude (constraintGroupScale), the speed when
+// |speed − target| > kFeasibilityTolerance m/s. The optimiser's status, summary.json and
+// `gaitopt evaluate` share it (gait/feasibility.hpp).
+constexpr double kFeasibilityTolerance = 1e-6;
+
+// Phase-wise (semi-infinite) groups hold one block of per_point entries per node of their
+// phase's Chebyshev grid, from node first_point on (the clearance skips both phase ends).
+enum class ConstraintPhase : unsigned char { None, SingleSupport, DoubleSupport };
+
 struct ConstraintGroup {
   std::string name;
   int level;
   std::string equation;  // thesis reference
   int offset;            // first entry in the flat vector
   int count;
+  ConstraintPhase phase = ConstraintPhase::None;
+  int per_point = 1;
+  int first_point = 0;
 };
+
+// Typical magnitude of a constraint group's values (the optimiser sees g / scale, O(1)).
+double constraintGroupScale(int group, const Model& model);
 
 // State of one entry after an evaluation.
 enum class ConstraintState : unsigned char {

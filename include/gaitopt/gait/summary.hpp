@@ -18,11 +18,13 @@ namespace gaitopt {
 struct ConstraintGroupSummary {
   double value = 0.0;  // max over Defined entries (NaN if none is Defined)
   int defined = 0;     // entries whose state is Defined
-  int violated = 0;    // Defined entries > 0
+  int violated = 0;    // Defined entries > tolerance
 };
 
+// `tolerance`: kFeasibilityTolerance × the group's scale in summary.json (gait/feasibility.hpp).
 ConstraintGroupSummary summarizeConstraintGroup(const ConstraintGroup& group,
-                                                const GaitEvaluation<double>& evaluation);
+                                                const GaitEvaluation<double>& evaluation,
+                                                double tolerance = 0.0);
 
 // max(0, max over every Defined entry): the largest violation that counts.
 // Unit of a constraint group's values ("N m", "rad", "m^2", ...).

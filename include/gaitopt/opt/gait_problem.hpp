@@ -28,17 +28,19 @@ std::unique_ptr<CostTerm> makeCriterionCost(GaitEvaluationCache& cache, Criterio
                                             double scale);
 std::unique_ptr<CostTerm> makeDistanceCost(const GaitParameters& reference,
                                            const Parameterisation& parameterisation);
-// Typical magnitude of a constraint group's values (the optimiser sees g / scale, O(1)).
-double constraintGroupScale(int group, const Model& model);
+// constraintGroupScale (gait/constraints.hpp) of the group holding a layout entry.
 double constraintScale(const ConstraintLayout& layout, const Model& model, int entry);
 // Layout entries of every level ≤ max_level.
 std::vector<int> hierarchyEntries(const ConstraintLayout& layout, int max_level);
 // The given layout entries as g / scale ≤ −interior for levels 0–4 (the evaluator fails them
-// at g > 0) and ≤ −level5_interior for level 5.
+// at g > 0) and ≤ −level5_interior for level 5. With between_nodes, the row of a phase-wise
+// entry at node j is the maximum over [s_{j+1}, s_j] of the Chebyshev interpolant of its
+// sequence (math/chebyshev_maxima.hpp): the semi-infinite constraint held on the whole phase.
 std::unique_ptr<ConstraintSet> makeHierarchyConstraints(GaitEvaluationCache& cache,
                                                         const std::vector<int>& entries,
                                                         double interior = 1e-6,
-                                                        double level5_interior = 0.0);
+                                                        double level5_interior = 0.0,
+                                                        bool between_nodes = true);
 std::unique_ptr<ConstraintSet> makeSpeedConstraint(GaitEvaluationCache& cache, double speed);
 
 }  // namespace gaitopt

@@ -33,6 +33,9 @@ struct SolverSettings {
   // on the full grid after each solve); false: every grid entry in one NLP.
   bool constraint_exchange = false;  // measured: SLSQP stalls with it, Ipopt gains (README)
   GradientMode gradients = GradientMode::Exact;
+  // Phase-wise rows as the interpolant's maxima between the nodes (opt/gait_problem.hpp), so
+  // the semi-infinite constraints hold on the whole phase; false: at the nodes only.
+  bool between_nodes = true;
   int max_restarts = 3;  // of the full stage, from the last point, when it ends unmet
   // When the full stage still ends with an unmet constraint: the nearest point meeting every
   // level and the speed, then the full stage again from there (README "Global search"). Off
@@ -68,6 +71,8 @@ struct OptimizationResult {
   double constraint_violation = 0.0;  // max over all levels and the speed, unscaled
   int unmet_level = -1;               // lowest level with an unmet constraint
   std::vector<std::string> unmet_constraints;
+  // Worst scaled phase-wise value on the 10× finer check (gait/feasibility.hpp).
+  double between_nodes_worst = 0.0;
   std::vector<StageReport> stages;
 };
 

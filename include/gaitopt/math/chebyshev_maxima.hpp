@@ -1,0 +1,39 @@
+#pragma once
+// Maxima of a Chebyshev interpolant between its nodes. A semi-infinite constraint sampled at
+// the Chebyshev–Lobatto nodes of its phase has the interpolant G(s) = Σ_k l_k(s) g_k; its
+// maximum over [s_{k+1}, s_k] is the constraint's value between those two nodes, and by the
+// envelope theorem its gradient is Σ_k l_k(s*) ∇g_k (at a node, the node's own row).
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "gaitopt/math/chebyshev.hpp"
+
+namespace gaitopt {
+
+struct InterpolantMaximum {
+  double s = 0.0;      // where, in the grid's coordinate
+  double value = 0.0;  // G(s)
+};
+
+// Lagrange basis at s: G(s) = l(s)·values for any nodal values (a unit vector at a node).
+Eigen::VectorXd lagrangeBasis(const ChebyshevGrid& grid, double s);
+
+class IntervalMaxima {
+ public:
+  explicit IntervalMaxima(const ChebyshevGrid& grid);
+  // For each interval k = 0..n−1 between nodes s_{k+1} < s_k, the maximum of the interpolant
+  // of `values` over the closed interval: a sample of each interval (one matrix product), then
+  // Newton on G' = 0 where a sample beats both nodes or G rises from the higher node inwards.
+  std::vector<InterpolantMaximum> operator()(const Eigen::VectorXd& values) const;
+
+ private:
+  InterpolantMaximum refine(const Eigen::VectorXd& values, const Eigen::VectorXd& slope,
+                            InterpolantMaximum start, double lo, double hi) const;
+
+  const ChebyshevGrid& grid_;
+  Eigen::VectorXd sample_s_;  // interior sample points, kSamples − 1 per interval
+  Eigen::MatrixXd sample_;    // interpolation matrix onto them
+};
+
+}  // namespace gaitopt

@@ -1,0 +1,90 @@
+// Interval maxima of a Chebyshev interpolant (math/chebyshev_maxima.hpp): the maximum against
+// a dense scan of the interpolant, and the envelope-theorem gradient against central finite
+// differences of the maximum itself.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "gaitopt/math/chebyshev_maxima.hpp"
+
+namespace {
+
+using gaitopt::ChebyshevGrid;
+
+// Nodal values of f(s; p) = p0 sin(3 s + p1) + p2 s², smooth in s and p.
+Eigen::VectorXd sampled(const ChebyshevGrid& grid, const Eigen::Vector3d& p) {
+  Eigen::VectorXd v(grid.size());
+  for (int k = 0; k < grid.size(); ++k) {
+    const double s = grid.nodes()[k];
+    v[k] = p[0] * std::sin(3.0 * s + p[1]) + p[2] * s * s;
+  }
+  return v;
+}
+
+Eigen::MatrixXd sampledJacobian(const ChebyshevGrid& grid, const Eigen::Vector3d& p) {
+  Eigen::MatrixXd j(grid.size(), 3);
+  for (int k = 0; k < grid.size(); ++k) {
+    const double s = grid.nodes()[k];
+    j.row(k) << std::sin(3.0 * s + p[1]), p[0] * std::cos(3.0 * s + p[1]), s * s;
+  }
+  return j;
+}
+
+}  // namespace
+
+TEST_CASE("interval maxima equal a dense scan of the interpolant", "[gait][chebyshev_maxima]") {
+  const ChebyshevGrid grid(8);
+  const gaitopt::IntervalMaxima maxima(grid);
+  const Eigen::VectorXd v = sampled(grid, Eigen::Vector3d(1.0, 0.3, -0.4));
+  const auto m = maxima(v);
+  REQUIRE(static_cast<int>(m.size()) == grid.degree());
+  int interior = 0;
+  for (int k = 0; k < grid.degree(); ++k) {
+    const double lo = grid.nodes()[k + 1], hi = grid.nodes()[k];
+    double scan = -INFINITY;
+    for (int i = 0; i <= 20000; ++i) scan = std::max(scan, grid.interpolate(v, lo + (hi - lo) * i / 20000.0));
+    INFO("interval " << k);
+    CHECK(m[k].s >= lo);
+    CHECK(m[k].s <= hi);
+    CHECK(m[k].value == Approx(grid.interpolate(v, m[k].s)).margin(1e-14));
+    CHECK(m[k].value >= scan - 1e-12);
+    CHECK(m[k].value <= scan + 1e-9);
+    if (m[k].s > lo && m[k].s < hi) ++interior;
+  }
+  CHECK(interior >= 1);  // sin(3s) peaks inside an interval: the Newton branch is exercised
+}
+
+TEST_CASE("interval maximum gradient is the Lagrange-weighted node gradient",
+          "[gait][chebyshev_maxima]") {
+  const ChebyshevGrid grid(10);
+  const gaitopt::IntervalMaxima maxima(grid);
+  const Eigen::Vector3d p(0.8, -0.2, 0.5);
+  const auto m = maxima(sampled(grid, p));
+  const Eigen::MatrixXd jac = sampledJacobian(grid, p);
+  const double h = 1e-6;
+  int checked = 0;
+  for (int k = 0; k < grid.degree(); ++k) {
+    const Eigen::VectorXd grad = jac.transpose() * gaitopt::lagrangeBasis(grid, m[k].s);
+    for (int i = 0; i < 3; ++i) {
+      Eigen::Vector3d up = p, down = p;
+      up[i] += h;
+      down[i] -= h;
+      const double fd = (maxima(sampled(grid, up))[k].value - maxima(sampled(grid, down))[k].value) / (2.0 * h);
+      INFO("interval " << k << ", parameter " << i);
+      CHECK(grad[i] == Approx(fd).margin(1e-7));
+      ++checked;
+    }
+  }
+  CHECK(checked == 30);
+}
+
+TEST_CASE("lagrange basis reproduces the interpolant and is exact at nodes",
+          "[gait][chebyshev_maxima]") {
+  const ChebyshevGrid grid(7);
+  const Eigen::VectorXd v = sampled(grid, Eigen::Vector3d(1.2, 0.1, 0.3));
+  for (const double s : {-0.93, -0.2, 0.0, 0.41, 0.999})
+    CHECK(gaitopt::lagrangeBasis(grid, s).dot(v) == Approx(grid.interpolate(v, s)).margin(1e-13));
+  const Eigen::VectorXd at_node = gaitopt::lagrangeBasis(grid, grid.nodes()[3]);
+  CHECK(at_node[3] == 1.0);
+  CHECK(at_node.sum() == 1.0);
+}

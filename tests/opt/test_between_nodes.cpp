@@ -1,0 +1,86 @@
+// The one feasibility verdict (gait/feasibility.hpp) and the constraints held between the grid
+// nodes (interval-maximum rows, opt/gait_problem.hpp): the optimiser's status agrees with the
+// verdict and with `gaitopt evaluate`'s summary on its own output, and a problem whose optimum
+// violates between the nodes when only the nodes are constrained is caught and then fixed.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "gaitopt/gait/feasibility.hpp"
+#include "gaitopt/gait/summary.hpp"
+#include "gaitopt/io/optimize_config.hpp"
+#include "gaitopt/opt/optimizer.hpp"
+#include "test_support.hpp"
+
+using Catch::Matchers::Contains;
+using gaitopt::GaitEvaluator;
+using gaitopt::OptimizationResult;
+using gaitopt::OptimizeConfig;
+
+namespace {
+
+struct Run {
+  OptimizeConfig config;
+  GaitEvaluator evaluator;
+  OptimizationResult result;
+};
+
+// The default problem on a grid of the given size, with or without the between-node rows.
+Run optimizeDefault(int ss_nodes, int ds_nodes, bool between_nodes) {
+  OptimizeConfig config =
+      gaitopt::loadOptimizeConfig(gaitopt::test::sourcePath("configs/default.yaml"));
+  config.options.ss_nodes = ss_nodes;
+  config.options.ds_nodes = ds_nodes;
+  config.solver.between_nodes = between_nodes;
+  GaitEvaluator ev(config.robot, config.options, config.model_options);
+  const auto start = gaitopt::configuredInitialGuess(config, ev.model());
+  OptimizationResult r = gaitopt::optimizeGait(ev, gaitopt::optimizationRequest(config, start));
+  return {config, ev, r};
+}
+
+}  // namespace
+
+TEST_CASE("optimize: the status is the verdict that evaluate writes", "[optimize][between_nodes]") {
+  const Run run = optimizeDefault(32, 16, true);
+  const OptimizationResult& r = run.result;
+  REQUIRE(r.status == "optimal");
+  const gaitopt::FeasibilityVerdict v =
+      gaitopt::feasibilityVerdict(run.evaluator, r.parameters, r.evaluation);
+  CHECK(v.feasible);
+  CHECK(v.failed_level == -1);
+  CHECK(v.unmet_groups.empty());
+  REQUIRE(v.between_nodes.computed);
+  CHECK(v.between_nodes.ss_nodes == 320);
+  CHECK(v.between_nodes.worst_scaled <= gaitopt::kFeasibilityTolerance);
+  CHECK(r.between_nodes_worst == v.between_nodes.worst_scaled);
+  // `gaitopt evaluate` of the written gait: the same evaluation, the same verdict.
+  const std::string summary =
+      gaitopt::gaitSummaryJson(run.evaluator, r.parameters, run.evaluator.evaluate(r.parameters));
+  CHECK_THAT(summary, Contains("\"feasible\": true"));
+  CHECK_THAT(summary, Contains("\"failed_level\": null"));
+  CHECK_THAT(summary, Contains("\"unmet_constraints\": []"));
+}
+
+TEST_CASE("optimize: a violation between the nodes is caught by the verdict and fixed",
+          "[optimize][between_nodes]") {
+  // A coarse grid constrained at its nodes only: its optimum leaves the nodes just active and
+  // the constraints overshoot between them.
+  const Run nodes = optimizeDefault(12, 6, false);
+  const OptimizationResult& a = nodes.result;
+  INFO("nodes only: " << a.status << ", between nodes " << a.between_nodes_worst);
+  CHECK(a.status == "infeasible");
+  CHECK(a.unmet_level == 5);
+  CHECK(a.between_nodes_worst > 10.0 * gaitopt::kFeasibilityTolerance);
+  CHECK(a.constraint_violation <= 1e-3);  // the nodes themselves nearly hold
+  const std::string summary = gaitopt::gaitSummaryJson(nodes.evaluator, a.parameters,
+                                                       nodes.evaluator.evaluate(a.parameters));
+  CHECK_THAT(summary, Contains("\"feasible\": false"));
+  CHECK_THAT(summary, Contains("\"failed_level\": 5"));
+
+  const Run held = optimizeDefault(12, 6, true);
+  const OptimizationResult& b = held.result;
+  INFO("between nodes: " << b.status << ", between nodes " << b.between_nodes_worst << " " << (b.unmet_constraints.empty() ? std::string() : b.unmet_constraints[0]));
+  CHECK(b.status == "optimal");
+  CHECK(b.between_nodes_worst <= gaitopt::kFeasibilityTolerance);
+  CHECK(b.unmet_constraints.empty());
+}
