@@ -96,4 +96,8 @@ ConstraintLayout::ConstraintLayout(const GaitOptions& o) {
 
 int ConstraintLayout::levelOf(int entry) const { return entry_level_[entry]; }
 
+int ConstraintLayout::dsMotionSize() const {
+  return groups_[kDsMonotone].offset + groups_[kDsMonotone].count - dsMotionOffset();
+}
+
 }  // namespace gaitopt

@@ -75,6 +75,10 @@ template <class AD> GaitGradient GaitEvaluator::gradientWith(const GaitParameter
   r.dcriteria_kinks.resize(static_cast<int>(ad.criteria_kinks.size()), n);
   for (int k = 0; k < r.dcriteria_kinks.rows(); ++k)
     r.dcriteria_kinks.row(k) = gradientOf(ad.criteria_kinks[k], n).transpose();
+  for (const auto& piece : ad.ds_piece_g) {
+    Eigen::MatrixXd& d = r.dds_piece_g.emplace_back(static_cast<int>(piece.size()), n);
+    for (int k = 0; k < d.rows(); ++k) d.row(k) = gradientOf(piece[k], n).transpose();
+  }
   return r;
 }
 

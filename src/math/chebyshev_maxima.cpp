@@ -11,6 +11,45 @@ namespace {
 constexpr int kSamples = 6;
 constexpr int kNewtonSteps = 8;
 
+// Newton on G'(s) = 0 from `start`, kept in [lo, hi]; the better of start and result.
+InterpolantMaximum refine(const ChebyshevGrid& grid, const Eigen::VectorXd& values,
+                          const Eigen::VectorXd& slope, InterpolantMaximum start, double lo,
+                          double hi) {
+  double s = start.s;
+  for (int it = 0; it < kNewtonSteps; ++it) {
+    const auto [d1, d2] = grid.interpolateWithDerivative(slope, s);
+    if (!(d2 < 0.0)) break;
+    const double next = std::clamp(s - d1 / d2, lo, hi);
+    const bool done = std::abs(next - s) < 1e-14;
+    s = next;
+    if (done) break;
+  }
+  const double v = grid.interpolate(values, s);
+  return v > start.value ? InterpolantMaximum{s, v} : start;
+}
+
+// The ends of [lo, hi] with the interpolant's value and slope there.
+struct IntervalEnds {
+  double lo, hi, value_lo, value_hi, slope_lo, slope_hi;
+};
+
+// The higher end, or the best of the interior samples when one beats it; Newton from there
+// when the maximum is inside: a sample beats both ends, or G rises from the higher end inwards.
+InterpolantMaximum bestOf(const ChebyshevGrid& grid, const Eigen::VectorXd& values,
+                          const Eigen::VectorXd& slope, const IntervalEnds& e,
+                          const double* sample_s, const double* sample_value) {
+  const bool high = e.value_hi >= e.value_lo;
+  InterpolantMaximum best = high ? InterpolantMaximum{e.hi, e.value_hi}
+                                 : InterpolantMaximum{e.lo, e.value_lo};
+  bool inside = high ? e.slope_hi < 0.0 : e.slope_lo > 0.0;
+  for (int i = 0; i < kSamples - 1; ++i)
+    if (sample_value[i] > best.value) {
+      best = {sample_s[i], sample_value[i]};
+      inside = true;
+    }
+  return inside ? refine(grid, values, slope, best, e.lo, e.hi) : best;
+}
+
 }  // namespace
 
 Eigen::VectorXd lagrangeBasis(const ChebyshevGrid& grid, double s) {
@@ -23,6 +62,22 @@ Eigen::VectorXd lagrangeBasis(const ChebyshevGrid& grid, double s) {
   }
   for (int k = 0; k < grid.size(); ++k) l[k] = grid.barycentricWeights()[k] / (s - x[k]);
   return l / l.sum();
+}
+
+InterpolantMaximum maximumOn(const ChebyshevGrid& grid, const Eigen::VectorXd& values,
+                             const Eigen::VectorXd& slope, double lo, double hi) {
+  const IntervalEnds e{lo,
+                       hi,
+                       grid.interpolate(values, lo),
+                       grid.interpolate(values, hi),
+                       grid.interpolate(slope, lo),
+                       grid.interpolate(slope, hi)};
+  double sample_s[kSamples - 1], sample_value[kSamples - 1];
+  for (int i = 0; i < kSamples - 1; ++i) {
+    sample_s[i] = lo + (hi - lo) * (i + 1) / kSamples;
+    sample_value[i] = grid.interpolate(values, sample_s[i]);
+  }
+  return bestOf(grid, values, slope, e, sample_s, sample_value);
 }
 
 IntervalMaxima::IntervalMaxima(const ChebyshevGrid& grid) : grid_(grid) {
@@ -45,39 +100,10 @@ std::vector<InterpolantMaximum> IntervalMaxima::operator()(const Eigen::VectorXd
   std::vector<InterpolantMaximum> out;
   const int per = kSamples - 1;
   for (int k = 0; k < grid_.degree(); ++k) {
-    const double lo = x[k + 1], hi = x[k];
-    // The higher node, and whether G rises from it into the interval (then the maximum is
-    // inside even when no sample shows it).
-    const bool high = values[k] >= values[k + 1];
-    InterpolantMaximum best = high ? InterpolantMaximum{hi, values[k]}
-                                   : InterpolantMaximum{lo, values[k + 1]};
-    bool inside = high ? slope[k] < 0.0 : slope[k + 1] > 0.0;
-    for (int i = 0; i < per; ++i)
-      if (samples[k * per + i] > best.value) {
-        best = {sample_s_[k * per + i], samples[k * per + i]};
-        inside = true;
-      }
-    if (inside) best = refine(values, slope, best, lo, hi);
-    out.push_back(best);
+    const IntervalEnds e{x[k + 1], x[k], values[k + 1], values[k], slope[k + 1], slope[k]};
+    out.push_back(bestOf(grid_, values, slope, e, &sample_s_[k * per], &samples[k * per]));
   }
   return out;
-}
-
-// Newton on G'(s) = 0 from `start`, kept in [lo, hi]; the better of start and result.
-InterpolantMaximum IntervalMaxima::refine(const Eigen::VectorXd& values,
-                                          const Eigen::VectorXd& slope, InterpolantMaximum start,
-                                          double lo, double hi) const {
-  double s = start.s;
-  for (int it = 0; it < kNewtonSteps; ++it) {
-    const auto [d1, d2] = grid_.interpolateWithDerivative(slope, s);
-    if (!(d2 < 0.0)) break;
-    const double next = std::clamp(s - d1 / d2, lo, hi);
-    const bool done = std::abs(next - s) < 1e-14;
-    s = next;
-    if (done) break;
-  }
-  const double v = grid_.interpolate(values, s);
-  return v > start.value ? InterpolantMaximum{s, v} : start;
 }
 
 }  // namespace gaitopt

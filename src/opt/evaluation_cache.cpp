@@ -53,6 +53,15 @@ GaitGradient GaitEvaluationCache::finiteDifferenceGradient(const GaitParameters&
     r.dT_SS(i) = diff(ep.T_SS, em.T_SS);
     r.dT_DS(i) = diff(ep.T_DS, em.T_DS);
     r.dspeed(i) = diff(ep.speed, em.speed);
+    // The DS piece samples, when both sides split the DS as the point does.
+    r.dds_piece_g.resize(r.value.ds_piece_g.size());
+    for (std::size_t piece = 0; piece < r.dds_piece_g.size(); ++piece) {
+      Eigen::MatrixXd& d = r.dds_piece_g[piece];
+      if (d.size() == 0) d.setZero(static_cast<int>(r.value.ds_piece_g[piece].size()), n);
+      if (ep.ds_piece_g.size() != r.dds_piece_g.size() || em.ds_piece_g.size() != r.dds_piece_g.size())
+        continue;
+      for (int k = 0; k < d.rows(); ++k) d(k, i) = diff(ep.ds_piece_g[piece][k], em.ds_piece_g[piece][k]);
+    }
   }
   return r;
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 
+#include "gaitopt/gait/ds_interval_maxima.hpp"
 #include "gaitopt/math/chebyshev_maxima.hpp"
 
 namespace gaitopt {
@@ -65,31 +66,37 @@ struct BetweenNodeRow {
   int sub = 0, interval = 0;  // entry within the point, interval of the phase's grid
 };
 
+// The DS level-5 groups, whose values kink at the force split's switch times: their rows are
+// maxima over the DS pieces (gait/ds_interval_maxima.hpp); the other phase-wise groups are
+// smooth and use the interpolant of their node values.
+bool piecewise(int group) { return group >= kTorqueDS && group <= kDsMonotone; }
+
 class BetweenNodeRows {
  public:
-  BetweenNodeRows(const GaitEvaluator& ev, const std::vector<int>& entries)
-      : ev_(ev), ss_(ev.ssGrid()), ds_(ev.dsGrid()) {
+  BetweenNodeRows(const GaitEvaluator& ev, const std::vector<int>& entries, BetweenNodes which)
+      : ev_(ev), ss_(ev.ssGrid()), ds_(ev.dsGrid()), ds_pieces_(ev) {
     const ConstraintLayout& layout = ev.layout();
     for (int k : entries) {
       BetweenNodeRow r;
       for (int id = 0; id < kNumConstraintGroups; ++id) {
         const ConstraintGroup& g = layout[id];
-        // Single support only: the DS values have kinks where the force split switches branch
-        // (ds_switch_times), across which the interpolant oscillates (measured: C&A infeasible).
-        if (g.phase != ConstraintPhase::SingleSupport || k < g.offset || k >= g.offset + g.count)
-          continue;
+        const bool held = g.phase == ConstraintPhase::SingleSupport ||
+                          (g.phase == ConstraintPhase::DoubleSupport && which == BetweenNodes::Both);
+        if (!held || k < g.offset || k >= g.offset + g.count) continue;
         const int node = (k - g.offset) / g.per_point + g.first_point;
         const int last = grid(g).degree() - (id == kClearance ? 1 : 0);
         if (node < last) r = {id, (k - g.offset) % g.per_point, node};
       }
+      uses_pieces_ = uses_pieces_ || piecewise(r.group);
       rows_.push_back(r);
     }
   }
   // The interval maxima of every row's sequence at an evaluation (false: one is not computed).
   bool update(const GaitEvaluation<double>& e) {
     maxima_.clear();
+    if (uses_pieces_ && !ds_pieces_.update(e)) return false;
     for (const BetweenNodeRow& r : rows_) {
-      if (r.group < 0 || maxima_.count(key(r))) continue;
+      if (r.group < 0 || piecewise(r.group) || maxima_.count(key(r))) continue;
       Eigen::VectorXd values = Eigen::VectorXd::Zero(grid(ev_.layout()[r.group]).size());
       for (const auto& [node, k] : sequence(r)) {
         if (e.state[k] == ConstraintState::NotComputed) return false;
@@ -102,13 +109,18 @@ class BetweenNodeRows {
   }
   int size() const { return static_cast<int>(rows_.size()); }
   bool between(int row) const { return rows_[row].group >= 0; }
-  double value(int row) const { return maximum(row).value; }
-  // Envelope theorem: Σ_m l_m(s*) ∇g_m.
-  VectorX gradient(int row, const MatrixX& dg) const {
+  double value(int row) const {
     const BetweenNodeRow& r = rows_[row];
+    return piecewise(r.group) ? ds_pieces_.maximum(r.group, r.sub, r.interval).value
+                              : maximum(row).value;
+  }
+  // Envelope theorem: Σ_m l_m(s*) ∇g_m.
+  VectorX gradient(int row, const GaitGradient& gr) const {
+    const BetweenNodeRow& r = rows_[row];
+    if (piecewise(r.group)) return ds_pieces_.gradient(r.group, r.sub, r.interval, gr);
     const Eigen::VectorXd l = lagrangeBasis(grid(ev_.layout()[r.group]), maximum(row).s);
-    VectorX out = VectorX::Zero(dg.cols());
-    for (const auto& [node, k] : sequence(r)) out += l[node] * dg.row(k).transpose();
+    VectorX out = VectorX::Zero(gr.dg.cols());
+    for (const auto& [node, k] : sequence(r)) out += l[node] * gr.dg.row(k).transpose();
     return out;
   }
 
@@ -131,6 +143,8 @@ class BetweenNodeRows {
 
   const GaitEvaluator& ev_;
   IntervalMaxima ss_, ds_;
+  DsIntervalMaxima ds_pieces_;
+  bool uses_pieces_ = false;
   std::vector<BetweenNodeRow> rows_;
   std::map<int, std::vector<InterpolantMaximum>> maxima_;
 };
@@ -138,9 +152,11 @@ class BetweenNodeRows {
 class HierarchyConstraints : public ConstraintSet {
  public:
   HierarchyConstraints(GaitEvaluationCache& cache, const std::vector<int>& entries,
-                       double interior, double level5_interior, bool between_nodes)
+                       double interior, double level5_interior, BetweenNodes between_nodes)
       : cache_(cache), rows_(entries), interior_(interior), level5_interior_(level5_interior),
-        between_(cache.evaluator(), between_nodes ? entries : std::vector<int>()) {
+        between_(cache.evaluator(),
+                 between_nodes != BetweenNodes::None ? entries : std::vector<int>(),
+                 between_nodes) {
     const ConstraintLayout& layout = cache.evaluator().layout();
     for (int e : rows_) scales_.push_back(constraintScale(layout, cache.evaluator().model(), e));
   }
@@ -169,7 +185,7 @@ class HierarchyConstraints : public ConstraintSet {
     for (int i = 0; i < size(); ++i) {
       if (gr.value.state[rows_[i]] == ConstraintState::NotComputed) return false;
       if (between(i))
-        jac.row(i) = between_.gradient(i, gr.dg).transpose() / scales_[i];
+        jac.row(i) = between_.gradient(i, gr).transpose() / scales_[i];
       else
         jac.row(i) = gr.dg.row(rows_[i]) / scales_[i];
     }
@@ -286,7 +302,7 @@ std::vector<int> hierarchyEntries(const ConstraintLayout& layout, int max_level)
 std::unique_ptr<ConstraintSet> makeHierarchyConstraints(GaitEvaluationCache& cache,
                                                         const std::vector<int>& entries,
                                                         double interior, double level5_interior,
-                                                        bool between_nodes) {
+                                                        BetweenNodes between_nodes) {
   return std::make_unique<HierarchyConstraints>(cache, entries, interior, level5_interior,
                                                 between_nodes);
 }

@@ -117,6 +117,16 @@ void constraints(unsigned, double* result, unsigned n, const double* x, double* 
   if (c->rows.equality_rows.empty()) c->base->consider(v, 10.0 * c->base->settings.constraint_tol);
 }
 
+// Largest violation of the bounds at x (kUndefinedViolation where not computable).
+double violationAt(NlpProblem& problem, const RowMap& rows, const VectorX& x) {
+  VectorX g;
+  if (!problem.constraints(x, g)) return kUndefinedViolation;
+  double worst = 0.0;
+  for (int i = 0; i < g.size(); ++i)
+    worst = std::max({worst, g(i) - rows.upper(i), rows.lower(i) - g(i)});
+  return worst;
+}
+
 }  // namespace
 
 NlpSolution solveWithNlopt(NlpProblem& problem, const NlpSettings& settings, NloptMethod method) {
@@ -152,9 +162,12 @@ NlpSolution solveWithNlopt(NlpProblem& problem, const NlpSettings& settings, Nlo
     sol.x = Eigen::Map<const VectorX>(x.data(), n);
     sol.message = e.what();
   }
-  // A better point seen on the way than the one NLopt returns.
+  // A better point seen on the way than the one NLopt returns, or a tolerance-feasible one
+  // when NLopt, having found none feasible to its stricter test, returns its lowest cost.
   double returned = 0.0;
-  if (ctx.have_best && (!problem.cost(sol.x, returned) || ctx.best_f < returned)) {
+  if (ctx.have_best &&
+      (!problem.cost(sol.x, returned) || ctx.best_f < returned ||
+       violationAt(problem, inequalities.rows, sol.x) > 10.0 * settings.constraint_tol)) {
     sol.x = ctx.best_x;
     f = ctx.best_f;
   }

@@ -115,8 +115,11 @@ void solveStage(GaitEvaluationCache& cache, NlpSolution& sol, std::vector<int>& 
   for (int round = 0; round < kMaxExchangeRounds; ++round) {
     NlpProblem problem(gaitVariables(ev.model(), sol.x, ev.options().parameterisation));
     build(problem);
+    const BetweenNodes rows = !s.between_nodes      ? BetweenNodes::None
+                              : s.ds_between_nodes ? BetweenNodes::Both
+                                                   : BetweenNodes::SingleSupport;
     problem.addConstraints(
-        makeHierarchyConstraints(cache, entries, interior, level5_interior, s.between_nodes));
+        makeHierarchyConstraints(cache, entries, interior, level5_interior, rows));
     const std::string name = label + " (" + std::to_string(entries.size()) + " grid entries)";
     const NlpSolution next = solve(problem, s, name, carryMultipliers(sol, previous, entries), log);
     result.stages.push_back({name, next.status, next.iterations});
@@ -157,6 +160,18 @@ GaitParameters project(GaitEvaluationCache& cache, const GaitParameters& start, 
       .x;
 }
 
+// Worst scaled phase-wise value on the 10× finer check (gait/feasibility.hpp), of the DS
+// groups only when asked.
+double betweenNodesWorst(const GaitEvaluator& ev, const GaitParameters& p,
+                         bool double_support_only = false) {
+  const BetweenNodesCheck c = checkBetweenNodes(ev, p);
+  double worst = -INFINITY;
+  for (int id = 0; id < static_cast<int>(c.group_worst_scaled.size()); ++id)
+    if (!double_support_only || ev.layout()[id].phase == ConstraintPhase::DoubleSupport)
+      worst = std::max(worst, c.group_worst_scaled[id]);
+  return worst;
+}
+
 bool meetsAll(const GaitEvaluator& ev, const OptimizationRequest& req,
               const GaitEvaluation<double>& e) {
   return e.motion_computed && lowestViolatedLevel(ev, e, 5) < 0 &&
@@ -167,11 +182,11 @@ bool meetsAll(const GaitEvaluator& ev, const OptimizationRequest& req,
 // step (it cannot jump to another local optimum) after which the evaluator's strict g ≤ 0
 // holds. Kept only if it converged, stays feasible and costs at most 1e-6 more.
 GaitParameters polish(GaitEvaluationCache& cache, const GaitParameters& p,
-                      const OptimizationRequest& req, double scale, std::ostream* log,
-                      OptimizationResult& r) {
+                      const OptimizationRequest& req, const SolverSettings& settings,
+                      double scale, std::ostream* log, OptimizationResult& r) {
   const GaitEvaluator& ev = cache.evaluator();
   const double before = criterionValue(cache.values(p), req.criterion);
-  const NlpSolution sol = solveStage(cache, p, 5, kInterior, kInterior, req.solver, "polish", log,
+  const NlpSolution sol = solveStage(cache, p, 5, kInterior, kInterior, settings, "polish", log,
                                      r, [&](NlpProblem& problem) {
                                        problem.addCost(makeCriterionCost(cache, req.criterion, scale));
                                        if (req.speed)
@@ -179,7 +194,8 @@ GaitParameters polish(GaitEvaluationCache& cache, const GaitParameters& p,
                                      });
   const GaitEvaluation<double>& e = cache.values(sol.x);
   const bool better = sol.status == NlpStatus::Solved && meetsAll(ev, req, e) &&
-                      criterionValue(e, req.criterion) <= before * (1.0 + 1e-6);
+                      criterionValue(e, req.criterion) <= before * (1.0 + 1e-6) &&
+                      betweenNodesWorst(ev, sol.x) <= std::max(kFeasibilityTol, betweenNodesWorst(ev, p));
   return better ? GaitParameters(sol.x) : p;
 }
 
@@ -290,11 +306,20 @@ GaitParameters solveFullProblem(GaitEvaluationCache& cache, GaitParameters p,
     if (!cache.values(sol.x).motion_computed) continue;  // restart from the last point
     status = sol.status;
     p = sol.x;
+    // The DS rows between the nodes join, warm from this point, once a solve ends with a DS
+    // constraint unmet there.
+    if (settings.between_nodes && !settings.ds_between_nodes &&
+        betweenNodesWorst(ev, p, true) > kFeasibilityTol) {
+      settings.ds_between_nodes = true;
+      continue;
+    }
     if (meetsAll(ev, req, cache.values(p)) ? status == NlpStatus::Solved
                                            : closeStage(cache, req, p, status, log, r))
       break;
   }
-  return status == NlpStatus::Solved && !interiorSolver() ? polish(cache, p, req, scale, log, r) : p;
+  return status == NlpStatus::Solved && !interiorSolver()
+             ? polish(cache, p, req, settings, scale, log, r)
+             : p;
 }
 
 // Feasibility restoration of a full solve that ended with an unmet level-5 constraint or speed

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <utility>
 
 #include "gaitopt/math/chebyshev_maxima.hpp"
 
@@ -87,4 +88,29 @@ TEST_CASE("lagrange basis reproduces the interpolant and is exact at nodes",
   const Eigen::VectorXd at_node = gaitopt::lagrangeBasis(grid, grid.nodes()[3]);
   CHECK(at_node[3] == 1.0);
   CHECK(at_node.sum() == 1.0);
+}
+
+TEST_CASE("maximum on a sub-interval equals a dense scan of the interpolant",
+          "[gait][chebyshev_maxima]") {
+  const ChebyshevGrid grid(12);
+  const Eigen::VectorXd v = sampled(grid, Eigen::Vector3d(1.0, 0.3, -0.4));
+  const Eigen::VectorXd slope = grid.differentiation() * v;
+  int interior = 0, at_end = 0;
+  // Sub-intervals that do not start or end at nodes, as a switch time cuts a piece.
+  const std::pair<double, double> cases[] = {{-0.93, -0.71}, {-0.7, -0.2}, {-0.35, 0.05},
+                                             {0.1, 0.123},   {0.2, 0.97},  {-1.0, 1.0}};
+  for (const auto& [lo, hi] : cases) {
+    const gaitopt::InterpolantMaximum m = gaitopt::maximumOn(grid, v, slope, lo, hi);
+    double scan = -INFINITY;
+    for (int i = 0; i <= 20000; ++i) scan = std::max(scan, grid.interpolate(v, lo + (hi - lo) * i / 20000.0));
+    INFO("[" << lo << ", " << hi << "]: max " << m.value << " at " << m.s << ", scan " << scan);
+    CHECK(m.s >= lo);
+    CHECK(m.s <= hi);
+    CHECK(m.value == Approx(grid.interpolate(v, m.s)).margin(1e-14));
+    CHECK(m.value >= scan - 1e-12);
+    CHECK(m.value <= scan + 1e-9);
+    ++(m.s > lo && m.s < hi ? interior : at_end);
+  }
+  CHECK(interior >= 2);
+  CHECK(at_end >= 2);
 }

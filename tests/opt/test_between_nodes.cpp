@@ -25,10 +25,10 @@ struct Run {
   OptimizationResult result;
 };
 
-// The default problem on a grid of the given size, with or without the between-node rows.
-Run optimizeDefault(int ss_nodes, int ds_nodes, bool between_nodes) {
+// A shipped problem on a grid of the given size, with or without the between-node rows.
+Run optimizeConfig(const std::string& name, int ss_nodes, int ds_nodes, bool between_nodes) {
   OptimizeConfig config =
-      gaitopt::loadOptimizeConfig(gaitopt::test::sourcePath("configs/default.yaml"));
+      gaitopt::loadOptimizeConfig(gaitopt::test::sourcePath("configs/" + name));
   config.options.ss_nodes = ss_nodes;
   config.options.ds_nodes = ds_nodes;
   config.solver.between_nodes = between_nodes;
@@ -36,6 +36,10 @@ Run optimizeDefault(int ss_nodes, int ds_nodes, bool between_nodes) {
   const auto start = gaitopt::configuredInitialGuess(config, ev.model());
   OptimizationResult r = gaitopt::optimizeGait(ev, gaitopt::optimizationRequest(config, start));
   return {config, ev, r};
+}
+
+Run optimizeDefault(int ss_nodes, int ds_nodes, bool between_nodes) {
+  return optimizeConfig("default.yaml", ss_nodes, ds_nodes, between_nodes);
 }
 
 }  // namespace
@@ -83,4 +87,30 @@ TEST_CASE("optimize: a violation between the nodes is caught by the verdict and 
   CHECK(b.status == "optimal");
   CHECK(b.between_nodes_worst <= gaitopt::kFeasibilityTolerance);
   CHECK(b.unmet_constraints.empty());
+}
+
+TEST_CASE("optimize: a violation between the DS nodes is caught by the verdict and fixed",
+          "[optimize][between_nodes]") {
+  // C&A 0.75 m/s on 6 DS nodes, constrained at the nodes only: the rear foot's normal force
+  // and the torques overshoot between the DS nodes, across the force split's switch times.
+  const Run nodes = optimizeConfig("chevallereau_aoustin_0.75.yaml", 32, 6, false);
+  const OptimizationResult& a = nodes.result;
+  std::string unmet;
+  for (const std::string& n : a.unmet_constraints) unmet += n + " ";
+  INFO("nodes only: " << a.status << ", between nodes " << a.between_nodes_worst << ", unmet "
+                      << unmet);
+  CHECK(a.status == "infeasible");
+  CHECK(a.unmet_level == 5);
+  CHECK_THAT(unmet, Contains("_ds"));
+  CHECK(a.between_nodes_worst > 10.0 * gaitopt::kFeasibilityTolerance);
+
+  const Run held = optimizeConfig("chevallereau_aoustin_0.75.yaml", 32, 6, true);
+  const OptimizationResult& b = held.result;
+  INFO("between nodes: " << b.status << ", between nodes " << b.between_nodes_worst);
+  CHECK(b.status == "optimal");
+  CHECK(b.between_nodes_worst <= gaitopt::kFeasibilityTolerance);
+  const gaitopt::FeasibilityVerdict v =
+      gaitopt::feasibilityVerdict(held.evaluator, b.parameters, b.evaluation);
+  CHECK(v.feasible);
+  CHECK(v.between_nodes.ds_nodes == 60);
 }

@@ -68,6 +68,10 @@ class ConstraintLayout {
   int size() const { return size_; }
   int levelOf(int entry) const;
   bool has(int group) const { return groups_[group].count > 0; }
+  // The DS level-5 groups torque_envelope_ds … ds_monotone, contiguous in the layout: their
+  // first entry and their number of entries (0 without DS).
+  int dsMotionOffset() const { return groups_[kTorqueDS].offset; }
+  int dsMotionSize() const;
 
  private:
   std::vector<ConstraintGroup> groups_;

@@ -49,6 +49,12 @@ template <class S> struct GaitEvaluation {
   S T_SS = S(0.0), T_DS = S(0.0), step_length = S(0.0), speed = S(0.0), alphadot_fSS = S(0.0);
   GaitMotion<S> motion;
   DsPieces ds_pieces;
+  // The DS level-5 entries sampled on each DS piece's own grid (GaitGrids::ds_piece) with the
+  // piece's branch, where they are smooth: one vector per piece, node k's entries at the
+  // offsets of DS node k in the layout's DS level-5 block (ConstraintLayout::dsMotionOffset);
+  // and the pieces' bounds [s from DS start], one more than pieces. Empty without a switch.
+  std::vector<std::vector<S>> ds_piece_g;
+  std::vector<double> ds_piece_bounds;
   // Where the quadrature of W and C_E is split: the roots of the Γ*_j ω_j and of the electrical
   // power, the SS ones first (α [rad], the first ss_criteria_kinks entries), then the DS ones
   // (t from the DS start [s]), each phase in time order.

@@ -27,6 +27,7 @@ struct GaitGradient {
   Eigen::MatrixXd dg;  // rows: constraints, columns: parameters
   GaitParameters dC_Gamma, dC_E, dW, dC_frott, dT_SS, dT_DS, dspeed;
   Eigen::MatrixXd dcriteria_kinks;  // rows: the AD pass's criteria_kinks (implicit functions)
+  std::vector<Eigen::MatrixXd> dds_piece_g;  // per DS piece: rows as value.ds_piece_g
 };
 
 class GaitEvaluator {
@@ -43,6 +44,7 @@ class GaitEvaluator {
   const ConstraintLayout& layout() const { return layout_; }
   const ChebyshevGrid& ssGrid() const { return grids_.ss; }
   const ChebyshevGrid& dsGrid() const { return grids_.ds; }
+  const ChebyshevGrid& dsPieceGrid() const { return grids_.ds_piece; }
 
  private:
   Model model_;

@@ -458,33 +458,49 @@ PhaseSample<S> dsSample(const Model& m, const GaitOptions& o, const GaitMotion<S
   return s;
 }
 
-template <class S>
-void setPhaseConstraints(EvalContext<S>& c, int torque_group, int limits_group, int k,
-                         const PhaseSample<S>& s, ConstraintState st) {
+// The phase-wise entries of one sample at node k, each passed to put(group, index, value): to
+// the layout at a grid node, or to a DS piece's samples (GaitEvaluation::ds_piece_g).
+template <class S, class Put>
+void phaseConstraintValues(const EvalContext<S>& c, int torque_group, int limits_group, int k,
+                           const PhaseSample<S>& s, Put&& put) {
   const RobotParams& r = c.model.robot;
   const double jm = c.options.joint_limit_margin;
   for (int j = 0; j < 4; ++j) {  // (3.46), (3.47)
     const S limit = torqueLimit(r.envelope, s.omega(j), c.options.full_torque_envelope);
-    c.set(torque_group, 8 * k + 2 * j, s.gamma_star(j) - limit, st);
-    c.set(torque_group, 8 * k + 2 * j + 1, -s.gamma_star(j) - limit, st);
+    put(torque_group, 8 * k + 2 * j, s.gamma_star(j) - limit);
+    put(torque_group, 8 * k + 2 * j + 1, -s.gamma_star(j) - limit);
   }
   const std::array<S, 4> angles = {s.q(1), s.q(2), s.q(2) + s.q(3), s.q(4)};  // (3.42)
   for (int j = 0; j < 4; ++j) {
     const bool knee = j == 0 || j == 3;
     const double lo = knee ? r.limits.knee_min : r.limits.hip_min;
     const double hi = knee ? r.limits.knee_max : r.limits.hip_max;
-    c.set(limits_group, 8 * k + 2 * j, angles[j] - hi + jm, st);
-    c.set(limits_group, 8 * k + 2 * j + 1, lo - angles[j] + jm, st);
+    put(limits_group, 8 * k + 2 * j, angles[j] - hi + jm);
+    put(limits_group, 8 * k + 2 * j + 1, lo - angles[j] + jm);
   }
 }
 
-template <class S>
-void setContactConstraints(EvalContext<S>& c, int cone_group, int normal_group, int foot,
-                           int feet, int k, const Vector2<S>& R, ConstraintState st) {
+template <class S, class Put>
+void contactConstraintValues(const EvalContext<S>& c, int cone_group, int normal_group, int foot,
+                             int feet, int k, const Vector2<S>& R, Put&& put) {
   const double f = c.options.friction_coefficient;
-  c.set(cone_group, 2 * (feet * k + foot), -f * R(1) - R(0), st);  // (3.48)
-  c.set(cone_group, 2 * (feet * k + foot) + 1, -f * R(1) + R(0), st);
-  c.set(normal_group, feet * k + foot, c.options.min_normal_force - R(1), st);
+  put(cone_group, 2 * (feet * k + foot), -f * R(1) - R(0));  // (3.48)
+  put(cone_group, 2 * (feet * k + foot) + 1, -f * R(1) + R(0));
+  put(normal_group, feet * k + foot, c.options.min_normal_force - R(1));
+}
+
+// The DS level-5 entries (3.42), (3.43), (3.46)–(3.48) of one sample at DS node k.
+template <class S, class Put>
+void dsConstraintValues(const EvalContext<S>& c, int k, const PhaseSample<S>& s, Put&& put) {
+  phaseConstraintValues(c, kTorqueDS, kJointLimitsDS, k, s, put);
+  contactConstraintValues(c, kFrictionConeDS, kNormalForceDS, 0, 2, k, s.R1, put);
+  contactConstraintValues(c, kFrictionConeDS, kNormalForceDS, 1, 2, k, s.R2, put);
+  put(kDsMonotone, k, s.qd(0) - c.options.ds_alphadot_max);
+}
+
+// A writer of entries into the layout, all in state st.
+template <class S> auto layoutWriter(EvalContext<S>& c, ConstraintState st) {
+  return [&c, st](int group, int index, const S& value) { c.set(group, index, value, st); };
 }
 
 // Smooth integrands of the criteria at one sample: Γ*ᵀΓ*, Γ*ᵀω, the electrical power P (3.32)
@@ -584,6 +600,25 @@ template <class S> S switchTimeWithDerivative(EvalContext<S>& c, const DsPieces&
   return S(t) - phi / pieces.switch_rate[j];
 }
 
+// The DS level-5 entries of sample k of a piece, with the piece's branch, so that the
+// constraints can be held between the DS nodes on smooth pieces (GaitEvaluation::ds_piece_g).
+template <class S>
+void recordPieceSample(EvalContext<S>& c, const std::vector<S>& ends, std::size_t piece, int k,
+                       const PhaseSample<S>& s) {
+  std::vector<std::vector<S>>& g = c.out.ds_piece_g;
+  if (g.empty()) {
+    g.assign(ends.size() + 1, std::vector<S>(c.layout.dsMotionSize()));
+    c.out.ds_piece_bounds = {0.0};
+    for (const S& t : ends) c.out.ds_piece_bounds.push_back(valueOf(t));
+    c.out.ds_piece_bounds.push_back(valueOf(c.out.motion.T_DS));
+  }
+  std::vector<S>& v = g[piece];
+  const int first = c.layout.dsMotionOffset();
+  dsConstraintValues(c, k, s, [&c, &v, first](int group, int index, const S& value) {
+    v[c.layout[group].offset + index - first] = value;
+  });
+}
+
 template <class S>
 std::array<S, 4> integrateDsPiecewise(EvalContext<S>& c, const DsPieces& pieces) {
   const GaitMotion<S>& mo = c.out.motion;
@@ -600,6 +635,7 @@ std::array<S, 4> integrateDsPiecewise(EvalContext<S>& c, const DsPieces& pieces)
     for (int k = 0; k < c.piece_grid.size(); ++k) {
       const PhaseSample<S> s = dsSample(c.model, c.options, mo, S(ts(k)), pieces.branches[piece]);
       setIntegrands(c.model, s, k, S(1.0), f);
+      recordPieceSample(c, ends, piece, k, s);
     }
     const std::array<S, 4> part = integrateCriteria(c.piece_grid, f, a, b, c.out.criteria_kinks);
     for (int i = 0; i < 4; ++i) total[i] += part[i];
@@ -620,10 +656,7 @@ template <class S> std::array<S, 4> dsMotionStage(EvalContext<S>& c, ConstraintS
     const PhaseSample<S> s = dsSample(c.model, o, mo, S(ts(k)));
     for (int i = 0; i < 6; ++i) switching[k][i] = valueOf(s.switching[i]);
     branch[k] = s.branch;
-    setPhaseConstraints(c, kTorqueDS, kJointLimitsDS, k, s, st);
-    setContactConstraints(c, kFrictionConeDS, kNormalForceDS, 0, 2, k, s.R1, st);
-    setContactConstraints(c, kFrictionConeDS, kNormalForceDS, 1, 2, k, s.R2, st);
-    c.set(kDsMonotone, k, s.qd(0) - o.ds_alphadot_max, st);  // (3.43)
+    dsConstraintValues(c, k, s, layoutWriter(c, st));
     setIntegrands(c.model, s, k, S(1.0), ds_int);
   }
   c.out.ds_pieces = c.known_pieces ? *c.known_pieces : dsPieces(c, ts, branch, switching);
@@ -642,8 +675,8 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
   for (int k = 0; k < nss; ++k) {
     const S& ad = mo.ss_alphadot(k);
     const PhaseSample<S> s = ssSample(c.model, pts[k], ad, mo.ss_alphaddot(k));
-    setPhaseConstraints(c, kTorqueSS, kJointLimitsSS, k, s, st);
-    setContactConstraints(c, kFrictionConeSS, kNormalForceSS, 0, 1, k, s.R1, st);
+    phaseConstraintValues(c, kTorqueSS, kJointLimitsSS, k, s, layoutWriter(c, st));
+    contactConstraintValues(c, kFrictionConeSS, kNormalForceSS, 0, 1, k, s.R1, layoutWriter(c, st));
     if (k > 0 && k < nss - 1) {  // (3.49) on the open interval (gap #16)
       const S x = s.foot2(0) / mo.d;
       c.set(kClearance, k - 1, -(s.foot2(1) - o.clearance_height * (1.0 - x * x)), st);
@@ -686,6 +719,8 @@ template <class S> void discardNonFiniteMotion(EvalContext<S>& c) {
   out.C_Gamma = out.C_E = out.W = out.C_frott = S(0.0);
   out.criteria_kinks.clear();
   out.ss_criteria_kinks = 0;
+  out.ds_piece_g.clear();
+  out.ds_piece_bounds.clear();
   if (!std::isfinite(valueOf(out.T_SS)) || !std::isfinite(valueOf(out.speed)))
     out.T_SS = out.speed = out.alphadot_fSS = S(0.0);
   out.motion_computed = false;

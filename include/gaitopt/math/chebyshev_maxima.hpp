@@ -19,6 +19,12 @@ struct InterpolantMaximum {
 // Lagrange basis at s: G(s) = l(s)·values for any nodal values (a unit vector at a node).
 Eigen::VectorXd lagrangeBasis(const ChebyshevGrid& grid, double s);
 
+// Maximum of the interpolant of `values` over any [lo, hi] ⊂ [−1, 1] (slope: its nodal
+// derivative, grid.differentiation() · values), found as IntervalMaxima finds it between two
+// nodes; what a sub-interval cut by a switch time needs.
+InterpolantMaximum maximumOn(const ChebyshevGrid& grid, const Eigen::VectorXd& values,
+                             const Eigen::VectorXd& slope, double lo, double hi);
+
 class IntervalMaxima {
  public:
   explicit IntervalMaxima(const ChebyshevGrid& grid);
@@ -28,9 +34,6 @@ class IntervalMaxima {
   std::vector<InterpolantMaximum> operator()(const Eigen::VectorXd& values) const;
 
  private:
-  InterpolantMaximum refine(const Eigen::VectorXd& values, const Eigen::VectorXd& slope,
-                            InterpolantMaximum start, double lo, double hi) const;
-
   const ChebyshevGrid& grid_;
   Eigen::VectorXd sample_s_;  // interior sample points, kSamples − 1 per interval
   Eigen::MatrixXd sample_;    // interpolation matrix onto them

@@ -32,15 +32,17 @@ std::unique_ptr<CostTerm> makeDistanceCost(const GaitParameters& reference,
 double constraintScale(const ConstraintLayout& layout, const Model& model, int entry);
 // Layout entries of every level ≤ max_level.
 std::vector<int> hierarchyEntries(const ConstraintLayout& layout, int max_level);
+// Which phase-wise rows are maxima between the nodes; the others are node rows.
+enum class BetweenNodes { None, SingleSupport, Both };
+
 // The given layout entries as g / scale ≤ −interior for levels 0–4 (the evaluator fails them
-// at g > 0) and ≤ −level5_interior for level 5. With between_nodes, the row of a phase-wise
+// at g > 0) and ≤ −level5_interior for level 5. Between the nodes, the row of a phase-wise
 // entry at node j is the maximum over [s_{j+1}, s_j] of the Chebyshev interpolant of its
-// sequence (math/chebyshev_maxima.hpp): the semi-infinite constraint held on the whole phase.
-std::unique_ptr<ConstraintSet> makeHierarchyConstraints(GaitEvaluationCache& cache,
-                                                        const std::vector<int>& entries,
-                                                        double interior = 1e-6,
-                                                        double level5_interior = 0.0,
-                                                        bool between_nodes = true);
+// sequence (math/chebyshev_maxima.hpp), for the DS level-5 groups of its pieces' interpolants
+// (gait/ds_interval_maxima.hpp): the semi-infinite constraint held on the whole phase.
+std::unique_ptr<ConstraintSet> makeHierarchyConstraints(
+    GaitEvaluationCache& cache, const std::vector<int>& entries, double interior = 1e-6,
+    double level5_interior = 0.0, BetweenNodes between_nodes = BetweenNodes::Both);
 std::unique_ptr<ConstraintSet> makeSpeedConstraint(GaitEvaluationCache& cache, double speed);
 
 }  // namespace gaitopt

@@ -36,6 +36,10 @@ struct SolverSettings {
   // Phase-wise rows as the interpolant's maxima between the nodes (opt/gait_problem.hpp), so
   // the semi-infinite constraints hold on the whole phase; false: at the nodes only.
   bool between_nodes = true;
+  // With between_nodes, also the DS rows (gait/ds_interval_maxima.hpp). Off at first: the
+  // optimiser switches it on, warm from its point, once a solve ends with a DS constraint
+  // unmet between the nodes (from the start, SLSQP measured worse local optima: README).
+  bool ds_between_nodes = false;
   int max_restarts = 3;  // of the full stage, from the last point, when it ends unmet
   // When the full stage still ends with an unmet constraint: the nearest point meeting every
   // level and the speed, then the full stage again from there (README "Global search"). Off
