@@ -2,6 +2,7 @@
 // reported as kUndefinedCost and every constraint as violated, so SLSQP's line search on its
 // merit function backtracks, the role Ipopt's "cannot evaluate" plays.
 #include <algorithm>
+#include <array>
 #include <nlopt.hpp>
 #include <utility>
 
@@ -20,6 +21,10 @@ struct NloptContext {
   const NlpSettings& settings;
   int evaluations = 0;
   double violation = 0.0;  // largest constraint violation at the last constraint evaluation
+  // Each callback's (inequalities, equalities) largest violation and the point it was at:
+  // NLopt's SLSQP evaluates the equalities before the inequalities.
+  std::array<double, 2> part_violation{0.0, 0.0};
+  std::array<VectorX, 2> part_at;
   // The best point seen whose objective and constraints were both evaluated and whose largest
   // violation is within the problem's tolerance (NLopt keeps only points feasible to its own,
   // stricter test, so a run that ends oscillating could otherwise return its start).
@@ -27,7 +32,18 @@ struct NloptContext {
   VectorX best_x;  // best tolerance-feasible point seen
   double last_f = 0.0, best_f = 0.0;
   bool have_best = false;
-  void consider(const VectorX& x, double tol) {
+  // Records one callback's violation at x; once the objective and every callback are known
+  // at the same point, keeps it if it is the best tolerance-feasible one.
+  void consider(const VectorX& x, int part, double part_worst, bool has_equalities,
+                double tol) {
+    part_violation[part] = part_worst;
+    part_at[part] = x;
+    violation = part_worst;
+    const bool complete = !has_equalities || (part_at[0].size() == x.size() &&
+                                              part_at[1].size() == x.size() &&
+                                              part_at[0] == x && part_at[1] == x);
+    if (!complete) return;
+    violation = has_equalities ? std::max(part_violation[0], part_violation[1]) : part_worst;
     if (x.size() == last_x.size() && x == last_x && violation <= tol &&
         (!have_best || last_f < best_f)) {
       best_x = x;
@@ -104,17 +120,17 @@ void constraints(unsigned, double* result, unsigned n, const double* x, double* 
       for (unsigned j = 0; j < n; ++j) grad[out * n + j] = sign * jac(i, j);
     ++out;
   };
+  double worst = 0.0;
   if (c->equalities) {
     for (int i : c->rows.equality_rows) put(i, 1.0, c->rows.upper(i));
-    for (int k = 0; k < out; ++k) c->base->violation = std::max(c->base->violation, std::abs(result[k]));
-    c->base->consider(v, 10.0 * c->base->settings.constraint_tol);
-    return;
+    for (int k = 0; k < out; ++k) worst = std::max(worst, std::abs(result[k]));
+  } else {
+    for (int i : c->rows.upper_rows) put(i, 1.0, c->rows.upper(i));
+    for (int i : c->rows.lower_rows) put(i, -1.0, c->rows.lower(i));
+    for (int k = 0; k < out; ++k) worst = std::max(worst, result[k]);
   }
-  for (int i : c->rows.upper_rows) put(i, 1.0, c->rows.upper(i));
-  for (int i : c->rows.lower_rows) put(i, -1.0, c->rows.lower(i));
-  c->base->violation = 0.0;
-  for (int k = 0; k < out; ++k) c->base->violation = std::max(c->base->violation, result[k]);
-  if (c->rows.equality_rows.empty()) c->base->consider(v, 10.0 * c->base->settings.constraint_tol);
+  c->base->consider(v, c->equalities ? 1 : 0, worst, !c->rows.equality_rows.empty(),
+                    10.0 * c->base->settings.constraint_tol);
 }
 
 // Largest violation of the bounds at x (kUndefinedViolation where not computable).
