@@ -108,7 +108,7 @@ TEST_CASE("maximum on a sub-interval equals a dense scan of the interpolant",
     CHECK(m.s <= hi);
     CHECK(m.value == Approx(grid.interpolate(v, m.s)).margin(1e-14));
     CHECK(m.value >= scan - 1e-12);
-    CHECK(m.value <= scan + 1e-9);
+    CHECK(m.value <= scan + 1e-7);  // the scan's step is up to 1e-4 here
     ++(m.s > lo && m.s < hi ? interior : at_end);
   }
   CHECK(interior >= 2);
