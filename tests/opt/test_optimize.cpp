@@ -470,7 +470,7 @@ TEST_CASE("optimize: staged repairs a start that violates level 1, direct cannot
   // α at DS end ahead of α at DS start: the DS runs backwards, level 1 (alpha_order_DS) fails
   // and nothing from level 2 on (zero dynamics, criterion) can be computed.
   GaitParameters start = run.start;
-  start(gaitopt::kAlphaFDS) = start(gaitopt::kAlphaIDS) + 0.05;
+  start(gaitopt::kAlphaFDS) = start(gaitopt::kAlphaIDS) + 0.04;
   const GaitEvaluation<double> e0 = ev.evaluate(start);
   REQUIRE(e0.failed_level == 1);
   REQUIRE_FALSE(e0.motion_computed);
