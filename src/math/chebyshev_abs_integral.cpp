@@ -26,20 +26,29 @@ std::pair<double, double> seriesWithDerivative(const Eigen::VectorXd& a, double 
 }
 
 // The sign change of the series in [lo, hi] (p(lo), p(hi) of opposite signs): Newton, kept in
-// the bracket (bisection when a step leaves it). Quadratic near a simple root, so after a step
-// below 1e-8 the root is exact to rounding (a tighter test would chase rounding noise in p).
+// the bracket (a regula falsi step on the bracket when a Newton step leaves it, e.g. when an
+// end is itself the root). Quadratic near a simple root, so after a step below 1e-8 the root
+// is exact to rounding (a tighter test would chase rounding noise in p).
 InterpolantSignChange seriesRoot(const Eigen::VectorXd& a, double lo, double f_lo, double hi,
                                  double f_hi) {
-  double x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
-  if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
-  double slope = 0.0;
+  const auto falsi = [&] {
+    const double x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    return x >= lo && x <= hi ? x : 0.5 * (lo + hi);
+  };
+  double x = falsi(), slope = 0.0;
   for (int it = 0; it < 60; ++it) {
     const auto [p, dp] = seriesWithDerivative(a, x);
     slope = dp;
     if (p == 0.0) break;
-    if ((p < 0.0) == (f_lo < 0.0)) lo = x; else hi = x;
+    if ((p < 0.0) == (f_lo < 0.0)) {
+      lo = x;
+      f_lo = p;
+    } else {
+      hi = x;
+      f_hi = p;
+    }
     double next = x - p / dp;
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (!(next >= lo && next <= hi)) next = falsi();
     const double step = std::abs(next - x);
     x = next;
     if (step <= 1e-8 || hi - lo <= 1e-15) break;
