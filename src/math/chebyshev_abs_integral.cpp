@@ -88,6 +88,12 @@ std::vector<InterpolantSignChange> interpolantSignChanges(const ChebyshevGrid& g
     // next to a node where |f| dips, where p′ changes sign and whose values are within reach of
     // the slopes over the interval; the tests skip the search for the other intervals.
     if (!dips(k) && !dips(k + 1)) continue;
+    // The slopes' reach below, first estimated by the nodal differences around the interval
+    // (with a margin of 2) so that most dips cost no series evaluation.
+    double variation = std::abs(f_hi - f_lo);
+    if (k > 0) variation = std::max(variation, std::abs(values[k - 1] - f_hi));
+    if (k + 1 < last) variation = std::max(variation, std::abs(values[k + 2] - f_lo));
+    if (std::min(std::abs(f_lo), std::abs(f_hi)) > 2.0 * variation) continue;
     const double slope_lo = seriesWithDerivative(coefficients(), lo).second;
     const double slope_hi = seriesWithDerivative(a, hi).second;
     if ((slope_lo < 0.0) == (slope_hi < 0.0) ||
