@@ -79,6 +79,7 @@ ChebyshevGrid::ChebyshevGrid(int n) : n_(n) {
   for (int k = 0; k <= n; ++k)
     for (int m = 0; m <= n + 1; ++m)
       evaluate_minus_top(k, m) = cosPiRatio(static_cast<long long>(m) * k, n) - 1.0;
+  coefficients_ = to_coeffs;
   antiderivative_ = integrate * to_coeffs;
   cumulative_ = evaluate_minus_top * integrate * to_coeffs;  // this order: bit-stable results
   cumulative_.row(0).setZero();  // already zero in exact arithmetic; make it bit-exact
@@ -101,12 +102,26 @@ ChebyshevGrid::ChebyshevGrid(int n) : n_(n) {
 }
 
 Eigen::RowVectorXd ChebyshevGrid::cumulativeAt(double s) const {
-  // T_m(s) − T_m(1) by the three-term recurrence, as the rows of cumulative_ at the nodes.
-  Eigen::RowVectorXd t(n_ + 2);
-  t[0] = 1.0;
-  t[1] = s;
-  for (int m = 2; m <= n_ + 1; ++m) t[m] = 2.0 * s * t[m - 1] - t[m - 2];
-  return (t.array() - 1.0).matrix() * antiderivative_;
+  return cumulativeCombination({s}, {1.0});
+}
+
+Eigen::RowVectorXd ChebyshevGrid::cumulativeCombination(const std::vector<double>& points,
+                                                        const std::vector<double>& factors) const {
+  // Σ_i c_i (T_m(s_i) − T_m(1)) by the three-term recurrence, then through the antiderivative's
+  // coefficients once (as the rows of cumulative_ at the nodes).
+  Eigen::RowVectorXd t = Eigen::RowVectorXd::Zero(n_ + 2);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double s = points[i], c = factors[i];
+    double t_prev = 1.0, t_cur = s;
+    t[1] += c * (s - 1.0);
+    for (int m = 2; m <= n_ + 1; ++m) {
+      const double t_next = 2.0 * s * t_cur - t_prev;
+      t[m] += c * (t_next - 1.0);
+      t_prev = t_cur;
+      t_cur = t_next;
+    }
+  }
+  return t * antiderivative_;
 }
 
 int ChebyshevGrid::nearestNode(double s) const {

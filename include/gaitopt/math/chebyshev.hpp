@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -48,6 +49,13 @@ class ChebyshevGrid {
   // (row k of cumulative() at node k); what an integral between two points that are not nodes,
   // e.g. the roots where a kinked integrand is split, needs.
   Eigen::RowVectorXd cumulativeAt(double s) const;
+  // Σ_i factors[i]·cumulativeAt(points[i]) with a single matrix product: the weights of a sum of
+  // integrals between many points (a piecewise integral) for the cost of one.
+  Eigen::RowVectorXd cumulativeCombination(const std::vector<double>& points,
+                                           const std::vector<double>& factors) const;
+  // Values -> Chebyshev coefficients: p = Σ_j a_j T_j with a = C f, for the interpolant p of f
+  // (evaluated by Clenshaw's recurrence in O(n), e.g. in a root search).
+  const Eigen::MatrixXd& coefficients() const { return coefficients_; }
   // Spectral differentiation: (D f)_k = p'(s_k) for the interpolant p of f; lets callers get
   // nodal rates (e.g. velocities) of integrated quantities without finite differences.
   const Eigen::MatrixXd& differentiation() const { return differentiation_; }
@@ -138,6 +146,7 @@ class ChebyshevGrid {
   Eigen::VectorXd weights_;
   Eigen::MatrixXd cumulative_;
   Eigen::MatrixXd antiderivative_;  // nodal values -> Chebyshev coefficients of an antiderivative
+  Eigen::MatrixXd coefficients_;
   Eigen::MatrixXd differentiation_;
   Eigen::VectorXd barycentric_;
 };
