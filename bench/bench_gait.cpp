@@ -1,6 +1,7 @@
 // bench_gait: wall-clock cost of one gait evaluation (GaitEvaluator::evaluate: constraints,
 // criteria, motion) and of one evaluation with the exact gradient (evaluateWithGradient: the
-// double pass plus the forward-AD pass with 17 directions), on the default robot
+// double pass plus the forward-AD pass with 17 directions; with and without the derivatives of
+// the DS piece samples, which only the DS between-node rows need), on the default robot
 // (configs/robot/rabbit_miossec.yaml) with default GaitOptions.
 //
 //   bench_gait [--json FILE] [--batch N] [--repeats N] [--help]
@@ -116,7 +117,7 @@ struct Measured {
   int failed_level = -1;
   bool motion_computed = false;
   double C_Gamma = 0.0;
-  Stats evaluate, gradient;
+  Stats evaluate, gradient, gradient_nodes;
 };
 
 }  // namespace
@@ -162,13 +163,20 @@ int main(int argc, char** argv) {
                            escape(r);
                            return r.C_Gamma + r.g[0];
                          });
+    const auto gradient = [&ev, &p](bool ds_pieces) {
+      return [&ev, &p, ds_pieces]() {
+        const GaitGradient r = ev.evaluateWithGradient(p, ds_pieces);
+        escape(r);
+        return r.dC_Gamma(0) + r.dg(0, 3);
+      };
+    };
     m.gradient = measure("evaluateWithGradient",
                          "values + exact gradient (forward AD, 17 directions)", batch, repeats,
-                         [&ev, &p]() {
-                           const GaitGradient r = ev.evaluateWithGradient(p);
-                           escape(r);
-                           return r.dC_Gamma(0) + r.dg(0, 3);
-                         });
+                         gradient(true));
+    m.gradient_nodes = measure("gradient, no DS pieces",
+                               "as evaluateWithGradient without the DS piece derivatives (the "
+                               "optimiser while the DS between-node rows are off)",
+                               batch, repeats, gradient(false));
     results.push_back(m);
   }
 
@@ -185,6 +193,7 @@ int main(int argc, char** argv) {
     };
     row(m.evaluate, kEvaluateTargetNs);
     row(m.gradient, kGradientTargetNs);
+    row(m.gradient_nodes, kGradientTargetNs);
   }
   for (const Measured& m : results)
     std::printf("\n%s: failed_level %d, motion computed %s, C_Gamma %.6g", m.set.name.c_str(),
@@ -217,6 +226,7 @@ int main(int argc, char** argv) {
       };
       emit(m.evaluate, kEvaluateTargetNs);
       emit(m.gradient, kGradientTargetNs);
+      emit(m.gradient_nodes, kGradientTargetNs);
     }
     w.endArray();
     w.endObject();

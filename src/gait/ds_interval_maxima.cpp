@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "gaitopt/math/chebyshev_maxima.hpp"
 
@@ -103,7 +104,10 @@ Eigen::VectorXd DsIntervalMaxima::gradient(int group, int sub, int interval,
   const DsIntervalMaximum& m = maxima_[q][interval];
   const int first = ev_.layout().dsMotionOffset();
   if (m.piece < 0) return g.dg.row(first + entry(sequences_[q], m.node)).transpose();
-  const bool split = !g.dds_piece_g.empty();
+  const bool split = !g.value.ds_piece_g.empty();
+  if (split && g.dds_piece_g.size() != g.value.ds_piece_g.size())
+    throw std::logic_error("DS interval maxima: a gradient without the DS piece derivatives "
+                           "(evaluateWithGradient's ds_piece_gradients)");
   const Eigen::VectorXd l = lagrangeBasis(ev_.dsPieceGrid(), m.s);
   Eigen::VectorXd out = Eigen::VectorXd::Zero(g.dg.cols());
   for (int k = 0; k < l.size(); ++k) {

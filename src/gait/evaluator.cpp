@@ -53,7 +53,8 @@ GaitEvaluation<double> GaitEvaluator::evaluate(const GaitParameters& p) const {
   return out;
 }
 
-template <class AD> GaitGradient GaitEvaluator::gradientWith(const GaitParameters& p) const {
+template <class AD>
+GaitGradient GaitEvaluator::gradientWith(const GaitParameters& p, bool ds_piece_gradients) const {
   const int n = numParameters();
   GaitGradient r;
   // The double pass gives the values and the DS pieces the AD pass integrates over.
@@ -62,7 +63,8 @@ template <class AD> GaitGradient GaitEvaluator::gradientWith(const GaitParameter
   GaitVector<AD> pad(n);
   for (int i = 0; i < n; ++i) pad(i) = AD(p(i), directions, i);
   GaitEvaluation<AD> ad;
-  detail::evaluateGaitImpl(model_, options_, layout_, grids_, pad, ad, &r.value.ds_pieces);
+  detail::evaluateGaitImpl(model_, options_, layout_, grids_, pad, ad, &r.value.ds_pieces,
+                           ds_piece_gradients);
   r.dg.resize(layout_.size(), n);
   for (int k = 0; k < layout_.size(); ++k) r.dg.row(k) = gradientOf(ad.g[k], n).transpose();
   r.dC_Gamma = gradientOf(ad.C_Gamma, n);
@@ -82,12 +84,14 @@ template <class AD> GaitGradient GaitEvaluator::gradientWith(const GaitParameter
   return r;
 }
 
-GaitGradient GaitEvaluator::evaluateWithGradient(const GaitParameters& p) const {
+GaitGradient GaitEvaluator::evaluateWithGradient(const GaitParameters& p,
+                                                 bool ds_piece_gradients) const {
   checkSize(p);
   const int n = numParameters();
-  if (n == kNumGaitParameters) return gradientWith<GaitAD<kNumGaitParameters>>(p);
-  if (n <= 32) return gradientWith<GaitAD<32>>(p);
-  return gradientWith<GaitAD<kMaxGaitParameters>>(p);
+  if (n == kNumGaitParameters)
+    return gradientWith<GaitAD<kNumGaitParameters>>(p, ds_piece_gradients);
+  if (n <= 32) return gradientWith<GaitAD<32>>(p, ds_piece_gradients);
+  return gradientWith<GaitAD<kMaxGaitParameters>>(p, ds_piece_gradients);
 }
 
 }  // namespace gaitopt

@@ -3,7 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace gaitopt {
 
@@ -26,33 +29,51 @@ double sinPiHalfRatio(long long m, int n) { return std::sin(kPi * static_cast<do
 
 }  // namespace
 
-ChebyshevGrid::ChebyshevGrid(int n) : n_(n) {
+ChebyshevGrid::ChebyshevGrid(int n) : n_(n), t_(sharedTables(n)) {}
+
+std::shared_ptr<const ChebyshevGrid::Tables> ChebyshevGrid::sharedTables(int n) {
   if (n < 2) throw std::invalid_argument("ChebyshevGrid: need n >= 2");
+  // Most recently used first; a few degrees cover an optimisation (SS, DS and their 10×).
+  constexpr std::size_t kKept = 8;
+  static std::mutex mutex;
+  static std::vector<std::pair<int, std::shared_ptr<const Tables>>> kept;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto it = std::find_if(kept.begin(), kept.end(), [n](const auto& e) { return e.first == n; });
+  std::pair<int, std::shared_ptr<const Tables>> entry =
+      it != kept.end() ? *it : std::make_pair(n, std::make_shared<const Tables>(computeTables(n)));
+  if (it != kept.end()) kept.erase(it);
+  kept.insert(kept.begin(), entry);
+  if (kept.size() > kKept) kept.pop_back();
+  return entry.second;
+}
+
+ChebyshevGrid::Tables ChebyshevGrid::computeTables(int n) {
+  Tables t;
   const int np = n + 1;
 
   // Nodes s_k = cos(pi k / n).
-  nodes_.resize(np);
-  for (int k = 0; k <= n; ++k) nodes_[k] = cosPiRatio(k, n);
+  t.nodes.resize(np);
+  for (int k = 0; k <= n; ++k) t.nodes[k] = cosPiRatio(k, n);
 
   // Barycentric weights for Chebyshev–Lobatto points: (-1)^k, halved at the end points.
-  barycentric_.resize(np);
-  for (int k = 0; k <= n; ++k) barycentric_[k] = ((k % 2 == 0) ? 1.0 : -1.0) * ((k == 0 || k == n) ? 0.5 : 1.0);
+  t.barycentric.resize(np);
+  for (int k = 0; k <= n; ++k) t.barycentric[k] = ((k % 2 == 0) ? 1.0 : -1.0) * ((k == 0 || k == n) ? 0.5 : 1.0);
 
   // Clenshaw–Curtis weights (closed-form cosine sums).
-  weights_.setZero(np);
+  t.weights.setZero(np);
   {
     Eigen::VectorXd v = Eigen::VectorXd::Ones(np);
     if (n % 2 == 0) {
-      weights_[0] = weights_[n] = 1.0 / (static_cast<double>(n) * n - 1.0);
+      t.weights[0] = t.weights[n] = 1.0 / (static_cast<double>(n) * n - 1.0);
       for (int k = 1; k < n / 2; ++k)
         for (int i = 1; i < n; ++i) v[i] -= 2.0 * cosPiRatio(2LL * k * i, n) / (4.0 * k * k - 1.0);
       for (int i = 1; i < n; ++i) v[i] -= cosPiRatio(static_cast<long long>(n) * i, n) / (static_cast<double>(n) * n - 1.0);
     } else {
-      weights_[0] = weights_[n] = 1.0 / (static_cast<double>(n) * n);
+      t.weights[0] = t.weights[n] = 1.0 / (static_cast<double>(n) * n);
       for (int k = 1; k <= (n - 1) / 2; ++k)
         for (int i = 1; i < n; ++i) v[i] -= 2.0 * cosPiRatio(2LL * k * i, n) / (4.0 * k * k - 1.0);
     }
-    for (int i = 1; i < n; ++i) weights_[i] = 2.0 * v[i] / n;
+    for (int i = 1; i < n; ++i) t.weights[i] = 2.0 * v[i] / n;
   }
 
   // Values -> Chebyshev coefficients (DCT-I as a matrix): f = Σ_j a_j T_j,
@@ -79,26 +100,27 @@ ChebyshevGrid::ChebyshevGrid(int n) : n_(n) {
   for (int k = 0; k <= n; ++k)
     for (int m = 0; m <= n + 1; ++m)
       evaluate_minus_top(k, m) = cosPiRatio(static_cast<long long>(m) * k, n) - 1.0;
-  coefficients_ = to_coeffs;
-  antiderivative_ = integrate * to_coeffs;
-  cumulative_ = evaluate_minus_top * integrate * to_coeffs;  // this order: bit-stable results
-  cumulative_.row(0).setZero();  // already zero in exact arithmetic; make it bit-exact
+  t.coefficients = to_coeffs;
+  t.antiderivative = integrate * to_coeffs;
+  t.cumulative = evaluate_minus_top * integrate * to_coeffs;  // this order: bit-stable results
+  t.cumulative.row(0).setZero();  // already zero in exact arithmetic; make it bit-exact
 
   // Differentiation matrix D_jk = (w_k / w_j) / (s_j - s_k) with the barycentric weights; node
   // differences via s_j - s_k = -2 sin(pi (j+k) / 2n) sin(pi (j-k) / 2n); diagonal by the
   // negative-sum trick so constants differentiate to exactly 0.
-  differentiation_.setZero(np, np);
+  t.differentiation.setZero(np, np);
   for (int j = 0; j <= n; ++j) {
     double row_sum = 0.0;
     for (int k = 0; k <= n; ++k) {
       if (k == j) continue;
       const double diff = -2.0 * sinPiHalfRatio(j + k, n) * sinPiHalfRatio(j - k, n);
-      const double d = (barycentric_[k] / barycentric_[j]) / diff;
-      differentiation_(j, k) = d;
+      const double d = (t.barycentric[k] / t.barycentric[j]) / diff;
+      t.differentiation(j, k) = d;
       row_sum += d;
     }
-    differentiation_(j, j) = -row_sum;
+    t.differentiation(j, j) = -row_sum;
   }
+  return t;
 }
 
 Eigen::RowVectorXd ChebyshevGrid::cumulativeAt(double s) const {
@@ -108,7 +130,7 @@ Eigen::RowVectorXd ChebyshevGrid::cumulativeAt(double s) const {
 Eigen::RowVectorXd ChebyshevGrid::cumulativeCombination(const std::vector<double>& points,
                                                         const std::vector<double>& factors) const {
   // Σ_i c_i (T_m(s_i) − T_m(1)) by the three-term recurrence, then through the antiderivative's
-  // coefficients once (as the rows of cumulative_ at the nodes).
+  // coefficients once (as the rows of cumulative() at the nodes).
   Eigen::RowVectorXd t = Eigen::RowVectorXd::Zero(n_ + 2);
   for (std::size_t i = 0; i < points.size(); ++i) {
     const double s = points[i], c = factors[i];
@@ -121,7 +143,7 @@ Eigen::RowVectorXd ChebyshevGrid::cumulativeCombination(const std::vector<double
       t_cur = t_next;
     }
   }
-  return t * antiderivative_;
+  return t * t_->antiderivative;
 }
 
 int ChebyshevGrid::nearestNode(double s) const {
@@ -132,9 +154,9 @@ int ChebyshevGrid::nearestNode(double s) const {
   int j0 = static_cast<int>(std::lround(t));
   j0 = std::clamp(j0, 0, n_);
   int best = j0;
-  double best_dist = std::abs(s - nodes_[j0]);
+  double best_dist = std::abs(s - t_->nodes[j0]);
   for (int j = std::max(0, j0 - 1); j <= std::min(n_, j0 + 1); ++j) {
-    const double dist = std::abs(s - nodes_[j]);
+    const double dist = std::abs(s - t_->nodes[j]);
     if (dist < best_dist) {
       best = j;
       best_dist = dist;

@@ -17,12 +17,18 @@ const GaitEvaluation<double>& GaitEvaluationCache::values(const GaitParameters& 
 
 const GaitGradient& GaitEvaluationCache::gradient(const GaitParameters& p) {
   if (!gradient_at_ || *gradient_at_ != p) {
-    gradient_ = mode_ == GradientMode::Exact ? evaluator_.evaluateWithGradient(p)
-                                             : finiteDifferenceGradient(p);
+    gradient_ = mode_ == GradientMode::Exact
+                    ? evaluator_.evaluateWithGradient(p, ds_piece_gradients_)
+                    : finiteDifferenceGradient(p);
     gradient_at_ = p;
     ++gradient_count_;
   }
   return gradient_;
+}
+
+void GaitEvaluationCache::setDsPieceGradients(bool on) {
+  if (on && !ds_piece_gradients_) gradient_at_.reset();  // the cached one lacks them
+  ds_piece_gradients_ = on;
 }
 
 // Step h_i = 1e-6 · max(1, |p_i|): near the optimum of the truncation/rounding trade-off for

@@ -88,6 +88,8 @@ class BetweenNodeRows {
         if (node < last) r = {id, (k - g.offset) % g.per_point, node};
       }
       uses_pieces_ = uses_pieces_ || piecewise(r.group);
+      if (r.group >= 0 && !piecewise(r.group) && !sequences_.count(key(r)))
+        sequences_[key(r)] = sequenceOf(r);
       rows_.push_back(r);
     }
   }
@@ -98,7 +100,7 @@ class BetweenNodeRows {
     for (const BetweenNodeRow& r : rows_) {
       if (r.group < 0 || piecewise(r.group) || maxima_.count(key(r))) continue;
       Eigen::VectorXd values = Eigen::VectorXd::Zero(grid(ev_.layout()[r.group]).size());
-      for (const auto& [node, k] : sequence(r)) {
+      for (const auto& [node, k] : sequences_.at(key(r))) {
         if (e.state[k] == ConstraintState::NotComputed) return false;
         values[node] = e.g[k];
       }
@@ -108,19 +110,21 @@ class BetweenNodeRows {
     return true;
   }
   int size() const { return static_cast<int>(rows_.size()); }
+  bool usesPieces() const { return uses_pieces_; }
   bool between(int row) const { return rows_[row].group >= 0; }
   double value(int row) const {
     const BetweenNodeRow& r = rows_[row];
     return piecewise(r.group) ? ds_pieces_.maximum(r.group, r.sub, r.interval).value
                               : maximum(row).value;
   }
-  // Envelope theorem: Σ_m l_m(s*) ∇g_m.
-  VectorX gradient(int row, const GaitGradient& gr) const {
+  // Envelope theorem: Σ_m l_m(s*) ∇g_m; dg_t = gr.dg transposed, so that each ∇g_m is a
+  // contiguous column (a Jacobian sums ~30 of them for each of ~1000 rows).
+  VectorX gradient(int row, const GaitGradient& gr, const MatrixX& dg_t) const {
     const BetweenNodeRow& r = rows_[row];
     if (piecewise(r.group)) return ds_pieces_.gradient(r.group, r.sub, r.interval, gr);
     const Eigen::VectorXd l = lagrangeBasis(grid(ev_.layout()[r.group]), maximum(row).s);
-    VectorX out = VectorX::Zero(gr.dg.cols());
-    for (const auto& [node, k] : sequence(r)) out += l[node] * gr.dg.row(k).transpose();
+    VectorX out = VectorX::Zero(dg_t.rows());
+    for (const auto& [node, k] : sequences_.at(key(r))) out += l[node] * dg_t.col(k);
     return out;
   }
 
@@ -133,7 +137,7 @@ class BetweenNodeRows {
     return maxima_.at(key(rows_[row]))[rows_[row].interval];
   }
   // (node, layout entry) of every entry of a row's sequence.
-  std::vector<std::pair<int, int>> sequence(const BetweenNodeRow& r) const {
+  std::vector<std::pair<int, int>> sequenceOf(const BetweenNodeRow& r) const {
     const ConstraintGroup& g = ev_.layout()[r.group];
     std::vector<std::pair<int, int>> out;
     for (int i = 0; i < g.count / g.per_point; ++i)
@@ -147,6 +151,7 @@ class BetweenNodeRows {
   bool uses_pieces_ = false;
   std::vector<BetweenNodeRow> rows_;
   std::map<int, std::vector<InterpolantMaximum>> maxima_;
+  std::map<int, std::vector<std::pair<int, int>>> sequences_;  // by key, the smooth groups'
 };
 
 class HierarchyConstraints : public ConstraintSet {
@@ -159,6 +164,7 @@ class HierarchyConstraints : public ConstraintSet {
                  between_nodes) {
     const ConstraintLayout& layout = cache.evaluator().layout();
     for (int e : rows_) scales_.push_back(constraintScale(layout, cache.evaluator().model(), e));
+    cache.setDsPieceGradients(between_.usesPieces());
   }
   std::string name() const override { return "hierarchy"; }
   int size() const override { return static_cast<int>(rows_.size()); }
@@ -182,10 +188,11 @@ class HierarchyConstraints : public ConstraintSet {
   bool jacobian(const VectorX& x, Eigen::Ref<MatrixX> jac) override {
     const GaitGradient& gr = cache_.gradient(toParameters(x));
     if (!between_.update(gr.value)) return false;
+    const MatrixX dg_t = between_.size() > 0 ? MatrixX(gr.dg.transpose()) : MatrixX();
     for (int i = 0; i < size(); ++i) {
       if (gr.value.state[rows_[i]] == ConstraintState::NotComputed) return false;
       if (between(i))
-        jac.row(i) = between_.gradient(i, gr).transpose() / scales_[i];
+        jac.row(i) = between_.gradient(i, gr, dg_t).transpose() / scales_[i];
       else
         jac.row(i) = gr.dg.row(rows_[i]) / scales_[i];
     }

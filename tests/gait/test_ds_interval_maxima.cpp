@@ -142,3 +142,35 @@ TEST_CASE("DS interval maximum gradients equal central differences", "[gait][bet
   CHECK(in_piece >= used);
   CHECK(at_node >= used);
 }
+
+TEST_CASE("A gradient without the DS piece derivatives is the same gradient otherwise",
+          "[gait][between_nodes]") {
+  const GaitFile g = caOptimum(6);
+  const GaitEvaluator ev(g.robot, g.options, g.model_options);
+  const gaitopt::GaitGradient full = ev.evaluateWithGradient(g.parameters);
+  const gaitopt::GaitGradient nodes = ev.evaluateWithGradient(g.parameters, false);
+  REQUIRE(full.value.ds_pieces.switch_times.size() >= 2);
+  REQUIRE(full.dds_piece_g.size() == full.value.ds_piece_g.size());
+  CHECK(nodes.dds_piece_g.empty());
+  // The values still carry the piece samples (the interval maxima need them).
+  CHECK(nodes.value.ds_piece_g.size() == full.value.ds_piece_g.size());
+  CHECK(nodes.dg == full.dg);
+  CHECK(nodes.dC_Gamma == full.dC_Gamma);
+  CHECK(nodes.dW == full.dW);
+  CHECK(nodes.dspeed == full.dspeed);
+  CHECK(nodes.dcriteria_kinks == full.dcriteria_kinks);
+  DsIntervalMaxima maxima(ev);
+  REQUIRE(maxima.update(nodes.value));
+  // Some interval's maximum lies on a piece: its gradient needs the piece derivatives.
+  bool refused = false;
+  for (int j = 0; j < ev.dsGrid().degree() && !refused; ++j)
+    for (int sub = 0; sub < ev.layout()[gaitopt::kNormalForceDS].per_point; ++sub) {
+      if (maxima.maximum(gaitopt::kNormalForceDS, sub, j).piece < 0) continue;
+      CHECK_THROWS_WITH(maxima.gradient(gaitopt::kNormalForceDS, sub, j, nodes),
+                        Catch::Contains("without the DS piece derivatives"));
+      CHECK(maxima.gradient(gaitopt::kNormalForceDS, sub, j, full).size() == ev.numParameters());
+      refused = true;
+      break;
+    }
+  CHECK(refused);
+}

@@ -36,7 +36,10 @@ class GaitEvaluator {
                 const ModelOptions& model_options = {});
   // p must have options().parameterisation.size() entries (std::invalid_argument otherwise).
   GaitEvaluation<double> evaluate(const GaitParameters& p) const;
-  GaitGradient evaluateWithGradient(const GaitParameters& p) const;
+  // ds_piece_gradients: also the derivatives of the DS piece samples (dds_piece_g), needed only
+  // by the DS between-node rows (gait/ds_interval_maxima.hpp) and most of a gradient's cost on
+  // a step whose force split switches branch (bench_gait, "gradient, no DS pieces").
+  GaitGradient evaluateWithGradient(const GaitParameters& p, bool ds_piece_gradients = true) const;
   int numParameters() const { return options_.parameterisation.size(); }
 
   const Model& model() const { return model_; }
@@ -52,7 +55,8 @@ class GaitEvaluator {
   ConstraintLayout layout_;
   GaitGrids grids_;
 
-  template <class AD> GaitGradient gradientWith(const GaitParameters& p) const;
+  template <class AD>
+  GaitGradient gradientWith(const GaitParameters& p, bool ds_piece_gradients) const;
   void checkSize(const GaitParameters& p) const;
 };
 

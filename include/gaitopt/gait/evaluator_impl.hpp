@@ -31,6 +31,7 @@ template <class S> struct EvalContext {
   const GaitVector<S>& p;
   GaitEvaluation<S>& out;
   const DsPieces* known_pieces;  // DS quadrature pieces found by a double pass, or null
+  bool record_pieces;            // GaitEvaluation::ds_piece_g wanted
 
   void set(int group, int index, const S& value, ConstraintState state) {
     const int k = layout[group].offset + index;
@@ -635,7 +636,7 @@ std::array<S, 4> integrateDsPiecewise(EvalContext<S>& c, const DsPieces& pieces)
     for (int k = 0; k < c.piece_grid.size(); ++k) {
       const PhaseSample<S> s = dsSample(c.model, c.options, mo, S(ts(k)), pieces.branches[piece]);
       setIntegrands(c.model, s, k, S(1.0), f);
-      recordPieceSample(c, ends, piece, k, s);
+      if (c.record_pieces) recordPieceSample(c, ends, piece, k, s);
     }
     const std::array<S, 4> part = integrateCriteria(c.piece_grid, f, a, b, c.out.criteria_kinks);
     for (int i = 0; i < 4; ++i) total[i] += part[i];
@@ -732,13 +733,13 @@ template <class S>
 void evaluateGaitImpl(const Model& model, const GaitOptions& options,
                       const ConstraintLayout& layout, const GaitGrids& grids,
                       const GaitVector<S>& p, GaitEvaluation<S>& out,
-                      const DsPieces* known_pieces = nullptr) {
+                      const DsPieces* known_pieces = nullptr, bool record_pieces = true) {
   out = GaitEvaluation<S>();
   out.g.assign(layout.size(), S(0.0));
   out.state.assign(layout.size(), ConstraintState::NotComputed);
   const GaitVector<S> pe = landingParameters(p, options.parameterisation);
-  EvalContext<S> c{model,   options, layout, grids.ss, grids.ds, grids.ds_piece,
-                   pe,      out,     known_pieces};
+  EvalContext<S> c{model, options, layout,       grids.ss,     grids.ds, grids.ds_piece,
+                   pe,    out,     known_pieces, record_pieces};
   const bool boundary_ok = boundaryStage(c);
   const bool ds = options.parameterisation.hasDoubleSupport();
   out.step_length = pe(kStepLength);

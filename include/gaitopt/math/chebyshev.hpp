@@ -11,6 +11,7 @@
 // Conventions: s_k = cos(pi k / n), k = 0..n, so s_0 = +1 and s_n = -1 (decreasing).
 // The interval map sends s = +1 to x = a and s = -1 to x = b; dx/ds = -(b - a)/2.
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -39,12 +40,12 @@ class ChebyshevGrid {
   int size() const { return n_ + 1; }
 
   // Nodes s_k in [-1, 1], s_0 = +1 ... s_n = -1; the fixed reference positions of the grid.
-  const Eigen::VectorXd& nodes() const { return nodes_; }
+  const Eigen::VectorXd& nodes() const { return t_->nodes; }
   // Clenshaw–Curtis weights: ∫_{-1}^{1} f ds ≈ w·f, exact for polynomials of degree <= n.
-  const Eigen::VectorXd& weights() const { return weights_; }
+  const Eigen::VectorXd& weights() const { return t_->weights; }
   // Cumulative integration anchored at s = +1: (Q f)_k ≈ ∫_{+1}^{s_k} f(s) ds (integrating
   // DOWN from +1, so negative for positive f); exact for polynomials of degree <= n.
-  const Eigen::MatrixXd& cumulative() const { return cumulative_; }
+  const Eigen::MatrixXd& cumulative() const { return t_->cumulative; }
   // Row r(s) with r(s)·f = ∫_{+1}^{s} p(t) dt for the interpolant p of f, at any s in [-1, 1]
   // (row k of cumulative() at node k); what an integral between two points that are not nodes,
   // e.g. the roots where a kinked integrand is split, needs.
@@ -55,12 +56,12 @@ class ChebyshevGrid {
                                            const std::vector<double>& factors) const;
   // Values -> Chebyshev coefficients: p = Σ_j a_j T_j with a = C f, for the interpolant p of f
   // (evaluated by Clenshaw's recurrence in O(n), e.g. in a root search).
-  const Eigen::MatrixXd& coefficients() const { return coefficients_; }
+  const Eigen::MatrixXd& coefficients() const { return t_->coefficients; }
   // Spectral differentiation: (D f)_k = p'(s_k) for the interpolant p of f; lets callers get
   // nodal rates (e.g. velocities) of integrated quantities without finite differences.
-  const Eigen::MatrixXd& differentiation() const { return differentiation_; }
+  const Eigen::MatrixXd& differentiation() const { return t_->differentiation; }
   // Barycentric weights (-1)^k, halved at both ends; the stable way to evaluate the interpolant.
-  const Eigen::VectorXd& barycentricWeights() const { return barycentric_; }
+  const Eigen::VectorXd& barycentricWeights() const { return t_->barycentric; }
 
   // Index of the node nearest to s (by plain value); used to pick the numerically safe form.
   int nearestNode(double s) const;
@@ -113,18 +114,18 @@ class ChebyshevGrid {
     if (static_cast<int>(values.size()) != n_ + 1)
       throw std::invalid_argument("ChebyshevGrid: values must have size() = n + 1 entries");
     const int j = nearestNode(valueOf(s));
-    const S h = s - nodes_[j];
+    const S h = s - t_->nodes[j];
     const V fj = values[j];
     S sum_c(0.0);
     R sum_cg(0.0);
     for (int k = 0; k <= n_; ++k) {
       if (k == j) continue;
-      const S c = barycentric_[k] / (s - nodes_[k]);
+      const S c = t_->barycentric[k] / (s - t_->nodes[k]);
       sum_c += c;
       const V g = values[k] - fj;
       sum_cg += c * g;
     }
-    const S e = barycentric_[j] + h * sum_c;
+    const S e = t_->barycentric[j] + h * sum_c;
     const R q = sum_cg / e;
     p = fj + h * q;
     if (!want_derivative) return;
@@ -132,23 +133,32 @@ class ChebyshevGrid {
     R sum_d(0.0);
     for (int k = 0; k <= n_; ++k) {
       if (k == j) continue;
-      const S d = s - nodes_[k];
-      const S c = barycentric_[k] / d;
+      const S d = s - t_->nodes[k];
+      const S c = t_->barycentric[k] / d;
       const V g = values[k] - fj;
       const R diff = hq - g;
       sum_d += c * diff / d;
     }
-    dp = (barycentric_[j] * q + h * sum_d) / e;
+    dp = (t_->barycentric[j] * q + h * sum_d) / e;
   }
 
+  // The precomputed data, shared by every grid of the same degree (chebyshev.cpp keeps the
+  // recently used degrees): building it costs O(n³), 77 ms at n = 320 (the feasibility
+  // verdict's 10× finer check builds such grids at every call).
+  struct Tables {
+    Eigen::VectorXd nodes;
+    Eigen::VectorXd weights;
+    Eigen::MatrixXd cumulative;
+    Eigen::MatrixXd antiderivative;  // nodal values -> Chebyshev coefficients of an antiderivative
+    Eigen::MatrixXd coefficients;
+    Eigen::MatrixXd differentiation;
+    Eigen::VectorXd barycentric;
+  };
+  static std::shared_ptr<const Tables> sharedTables(int n);
+  static Tables computeTables(int n);
+
   int n_;
-  Eigen::VectorXd nodes_;
-  Eigen::VectorXd weights_;
-  Eigen::MatrixXd cumulative_;
-  Eigen::MatrixXd antiderivative_;  // nodal values -> Chebyshev coefficients of an antiderivative
-  Eigen::MatrixXd coefficients_;
-  Eigen::MatrixXd differentiation_;
-  Eigen::VectorXd barycentric_;
+  std::shared_ptr<const Tables> t_;
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -20,6 +20,9 @@ class GaitEvaluationCache {
   const GaitEvaluator& evaluator() const { return evaluator_; }
   const GaitEvaluation<double>& values(const GaitParameters& p);
   const GaitGradient& gradient(const GaitParameters& p);
+  // Whether gradients carry the DS piece samples' derivatives (set by the constraint set that
+  // needs them, opt/gait_problem.cpp); off by default, they are the costly part of a gradient.
+  void setDsPieceGradients(bool on);
   int valueEvaluations() const { return value_count_; }
   int gradientEvaluations() const { return gradient_count_; }
 
@@ -28,6 +31,7 @@ class GaitEvaluationCache {
 
   const GaitEvaluator& evaluator_;
   GradientMode mode_;
+  bool ds_piece_gradients_ = false;
   std::optional<GaitParameters> value_at_, gradient_at_;
   GaitEvaluation<double> values_;
   GaitGradient gradient_;
