@@ -293,3 +293,17 @@ TEST_CASE("chebyshev: AD through parameter-dependent end points", "[chebyshev]")
     }
   }
 }
+
+TEST_CASE("chebyshev: grids of one degree share their tables, rebuilt alike once evicted",
+          "[chebyshev]") {
+  const ChebyshevGrid a(48), b(48);
+  CHECK(&a.cumulative() == &b.cumulative());  // built once (O(n^3)), not per grid
+  const Eigen::MatrixXd cumulative = a.cumulative();
+  const Eigen::MatrixXd differentiation = a.differentiation();
+  // More degrees than the shared store keeps: 48 is evicted, a new grid rebuilds its tables.
+  for (int n = 2; n < 20; ++n) CHECK(ChebyshevGrid(n).degree() == n);
+  const ChebyshevGrid c(48);
+  CHECK(c.cumulative() == cumulative);  // bit-identical: the same computation
+  CHECK(c.differentiation() == differentiation);
+  CHECK(a.cumulative() == cumulative);  // the old grid still holds its own tables
+}
