@@ -294,7 +294,9 @@ GaitParameters solveFullProblem(GaitEvaluationCache& cache, GaitParameters p,
   NlpSolution sol;
   sol.x = p;
   std::vector<int> entries;
-  for (int attempt = 0; attempt <= req.solver.max_restarts; ++attempt) {
+  // The warm continuation with the DS rows switched on is a new problem, not a restart.
+  int ds_continuation = 0;
+  for (int attempt = 0; attempt <= req.solver.max_restarts + ds_continuation; ++attempt) {
     const std::string label = attempt == 0 ? "full" : "full restart " + std::to_string(attempt);
     if (sol.multipliers.empty() || !cache.values(sol.x).motion_computed) {
       sol = NlpSolution();
@@ -320,6 +322,7 @@ GaitParameters solveFullProblem(GaitEvaluationCache& cache, GaitParameters p,
     if (settings.between_nodes && !settings.ds_between_nodes &&
         betweenNodesWorst(ev, p, true) > kFeasibilityTol) {
       settings.ds_between_nodes = true;
+      ds_continuation = 1;
       continue;
     }
     // SLSQP can stop on a short step with the rows between the nodes unmet (measured: 1.0 m/s
