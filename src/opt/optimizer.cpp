@@ -210,7 +210,9 @@ constexpr double kKktTol = 1e-3;
 
 // A stage that ended with its active constraints slightly off: closed by Newton on the active
 // set; kept when that meets every constraint, and counted solved when its KKT certificate
-// holds (whatever the solver's own stopping test said). Returns whether the stage is done.
+// holds (whatever the solver's own stopping test said). Returns whether the stage is done:
+// only when certified, a feasible closing of an early SLSQP stop being the next restart's
+// start (measured: chesse_0.85_ss5_ds2 ended `optimal` at one, 4641.9, instead of 2132.9).
 bool closeStage(GaitEvaluationCache& cache, const OptimizationRequest& req, GaitParameters& p,
                 NlpStatus& status, std::ostream* log, OptimizationResult& r) {
   const ActiveSetClosing c =
