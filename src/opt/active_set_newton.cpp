@@ -115,22 +115,25 @@ ActiveSetClosing closeActiveSet(GaitEvaluationCache& cache, const GaitParameters
   ActiveSetClosing out;
   out.x = start;
   std::vector<int> active;
-  for (; out.iterations <= kMaxNewtonSteps; ++out.iterations) {
+  for (;; ++out.iterations) {
     const GaitGradient& gr = cache.gradient(out.x);
     if (!gr.value.motion_computed) return out;
     growActiveSet(ev, gr.value, interior, active);
     const ActiveSystem s = activeSystem(ev, gr, active, speed, D, interior);
     out.active = static_cast<int>(s.r.size());
-    if (s.r.size() == 0 || s.r.cwiseAbs().maxCoeff() <= kNewtonResidual ||
-        out.iterations == kMaxNewtonSteps) {
-      out.feasible = meets(ev, gr.value, speed, feasibility_tol);
-      if (s.r.size() > 0) certify(s, criterionGradient(gr, criterion), D, out);
-      return out;
+    const bool converged = s.r.size() == 0 || s.r.cwiseAbs().maxCoeff() <= kNewtonResidual;
+    if (!converged && out.iterations < kMaxNewtonSteps) {
+      const VectorX dy = s.J.completeOrthogonalDecomposition().solve(-s.r);  // minimum norm
+      if (takeStep(cache, GaitParameters(dy.cwiseProduct(D)), speed, interior, out.x)) continue;
     }
-    const VectorX dy = s.J.completeOrthogonalDecomposition().solve(-s.r);  // minimum norm
-    if (!takeStep(cache, GaitParameters(dy.cwiseProduct(D)), speed, interior, out.x)) return out;
+    // Judged where the steps stop, also when no step lowers the violation any more: a row
+    // identically at its bound (a degenerate row left out of the system) keeps the
+    // violation at `interior` however well the other rows are met (measured: the speed
+    // closed from 1.1e-5 to 1e-10 m/s in one step, then refused as "not feasible").
+    out.feasible = meets(ev, gr.value, speed, feasibility_tol);
+    if (s.r.size() > 0) certify(s, criterionGradient(gr, criterion), D, out);
+    return out;
   }
-  return out;
 }
 
 }  // namespace gaitopt
