@@ -204,12 +204,9 @@ GaitParameters polish(GaitEvaluationCache& cache, const GaitParameters& p,
                                          problem.addConstraints(makeSpeedConstraint(cache, *req.speed));
                                      });
   const GaitEvaluation<double>& e = cache.values(sol.x);
-  const double worst_after = betweenNodesWorst(ev, sol.x);
-  const bool better =
-      sol.status == NlpStatus::Solved && meetsAll(ev, req, e) &&
-      (repair ? worst_after <= kFeasibilityTol
-              : criterionValue(e, req.criterion) <= before * (1.0 + 1e-6) &&
-                    worst_after <= kFeasibilityTol);
+  const bool better = sol.status == NlpStatus::Solved && meetsAll(ev, req, e) &&
+                      betweenNodesWorst(ev, sol.x) <= kFeasibilityTol &&
+                      (repair || criterionValue(e, req.criterion) <= before * (1.0 + 1e-6));
   return better ? GaitParameters(sol.x) : p;
 }
 

@@ -42,7 +42,7 @@ struct StartRefinement {
 };
 
 // `first` is the staged solve of `request` (request.initial its start); the perturbations are
-// drawn from `rng` only when a retry runs, so a start that converges uses no draw.
+// drawn from `rng` only when a retry or a perturbed restart runs.
 StartRefinement refineStart(const GaitEvaluator& evaluator, const OptimizationRequest& request,
                             OptimizationResult first, const StartRefinementSettings& settings,
                             std::mt19937_64& rng, std::ostream* log = nullptr);
