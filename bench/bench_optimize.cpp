@@ -26,7 +26,8 @@
 //       wall time per start, best polished criterion; before them, one line per start (status,
 //       unmet level and groups, violation, criterion, time) and its stages.
 //       --start-config NAME (repeatable) restricts (g) to configs/NAME; --no-restarts and
-//       --no-retries switch off the two levers of the start refinement (start_refinement.hpp).
+//       --no-retries and --no-perturbed-restarts switch off the three levers of the start
+//       refinement (start_refinement.hpp).
 //   (e) the optimisation of (a) with GradientMode::FiniteDifference (SLSQP): median of
 //       `fd-runs` (default 3); ratio to the exact-gradient median.
 //   (f) exact vs finite-difference gradients on configs/default.yaml, chesse_0.85.yaml and
@@ -145,7 +146,7 @@ void usage(std::ostream& out) {
   out << "usage: bench_optimize [--json FILE] [--runs N] [--sweep-runs N] [--fd-runs N]\n"
          "                      [--no-ipopt] [--ipopt-runs N] [--ipopt-only] [--no-configs]\n"
          "                      [--random-starts N [--start-config NAME]... [--no-restarts]\n"
-         "                       [--no-retries]]\n"
+         "                       [--no-retries] [--no-perturbed-restarts]]\n"
          "  --json FILE     also write every figure as JSON to FILE\n"
          "  --runs N        timed SLSQP optimisations of configs/default.yaml (default 7, >= 7)\n"
          "  --sweep-runs N  timed 9-speed sweeps (default 3)\n"
@@ -157,7 +158,8 @@ void usage(std::ostream& out) {
          "  --random-starts N  run (g) alone: N seeded random starts on each shipped config\n"
          "  --start-config NAME  (g) on configs/NAME only (repeatable)\n"
          "  --no-restarts   (g) without the restarts from an optimum (start_refinement.hpp)\n"
-         "  --no-retries    (g) without the perturbed retries of a start not optimal\n";
+         "  --no-retries    (g) without the perturbed retries of a start not optimal\n"
+         "  --no-perturbed-restarts  (g) without the perturbed restarts near an optimum\n";
 }
 
 void writeRun(JsonWriter& w, const Run& r) {
@@ -299,10 +301,10 @@ void printStartTable(const StartProtocol& p) {
     std::string unmet;
     for (const std::string& u : r.unmet_constraints) unmet += (unmet.empty() ? "" : ",") + u;
     std::printf("    start %3d  %-10s level %2d %-28s viol %9.2e  C %s  %.2f s  restarts %d "
-                "retries %d\n",
+                "retries %d perturbed %d\n",
                 st.index, r.status.c_str(), r.unmet_level, unmet.c_str(), r.constraint_violation,
                 criterionText(criterionOf(r, p.criterion)).c_str(), r.wall_time_s, st.restarts,
-                st.retries);
+                st.retries, st.perturbed_restarts);
     for (const StageReport& sr : r.stages)
       std::printf("        %-44s %-10s %4d it\n", sr.name.c_str(), nlpStatusName(sr.status),
                   sr.iterations);
@@ -339,6 +341,7 @@ void writeStartProtocol(JsonWriter& w, const StartProtocol& p) {
     w.key("wall_time_s").value(st.result.wall_time_s);
     w.key("restarts").value(st.restarts);
     w.key("retries").value(st.retries);
+    w.key("perturbed_restarts").value(st.perturbed_restarts);
     w.endObject();
   }
   w.endArray();
@@ -358,8 +361,9 @@ int startProtocolOnly(int starts, const std::vector<std::string>& names,
                       const StartRefinementSettings& refinement, const std::string& json_path,
                       const Environment& env) {
   std::printf("(g) random-start protocol: %d starts per configuration, seed 1, up to %d "
-              "restarts and %d retries per start\n",
-              starts, refinement.max_restarts, refinement.max_retries);
+              "restarts, %d retries and %d perturbed restarts per start\n",
+              starts, refinement.max_restarts, refinement.max_retries,
+              refinement.max_perturbed_restarts);
   std::vector<StartProtocol> protocols;
   try {
     for (const std::string& name : names) {
@@ -419,6 +423,8 @@ int main(int argc, char** argv) {
       refinement.max_restarts = 0;
     } else if (arg == "--no-retries") {
       refinement.max_retries = 0;
+    } else if (arg == "--no-perturbed-restarts") {
+      refinement.max_perturbed_restarts = 0;
     } else if (arg == "--no-configs") {
       with_configs = false;
     } else {

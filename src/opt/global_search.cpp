@@ -96,6 +96,7 @@ GlobalSearchResult globalSearch(const GaitEvaluator& ev, const OptimizationReque
       st.result = std::move(refined.result);
       st.restarts = refined.restarts;
       st.retries = refined.retries;
+      st.perturbed_restarts = refined.perturbed_restarts;
       times.push_back(st.result.wall_time_s);
     }
     g.skipped += st.skipped ? 1 : 0;

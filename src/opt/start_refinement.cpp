@@ -57,6 +57,15 @@ StartRefinement refineStart(const GaitEvaluator& ev, const OptimizationRequest& 
     account(r, next, lower);
     if (!lower) break;
   }
+  while (optimal(r) && out.perturbed_restarts < s.max_perturbed_restarts) {
+    ++out.perturbed_restarts;
+    if (log) *log << "--- perturbed restart " << out.perturbed_restarts << " near the optimum\n";
+    const double before = criterionValue(r.evaluation, request.criterion);
+    const GaitParameters start = randomStart(r.parameters, rng, par, s.optimum_perturbation);
+    const OptimizationResult next = solveFrom(ev, restart, start, log);
+    account(r, next, optimal(next) && criterionValue(next.evaluation, request.criterion) <
+                                          before * (1.0 - s.min_improvement));
+  }
   return out;
 }
 

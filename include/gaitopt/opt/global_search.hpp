@@ -40,7 +40,7 @@ struct GlobalStart {
   GaitParameters start;
   bool skipped = false;  // inside the basin of an optimum found earlier: not optimised
   OptimizationResult result;  // empty when skipped; after refinement
-  int restarts = 0, retries = 0;  // of the refinement
+  int restarts = 0, retries = 0, perturbed_restarts = 0;  // of the refinement
 };
 
 struct GlobalSearchResult {
