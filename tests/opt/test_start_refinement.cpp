@@ -43,6 +43,23 @@ gaitopt::GaitParameters kthStart(const ConfigProblem& p, int k, std::uint64_t se
   return start;
 }
 
+// The configured optimum and the staged solve (with restoration) from the k-th start of seed 1,
+// which the refine tests below pick because it stops `optimal` early.
+struct EarlyStop {
+  gaitopt::OptimizationResult reference;
+  gaitopt::OptimizationRequest request;
+  gaitopt::OptimizationResult first;
+};
+EarlyStop earlyStop(const ConfigProblem& p, int k) {
+  EarlyStop e;
+  e.reference = gaitopt::optimizeGait(p.evaluator, p.request());
+  e.request = p.request();
+  e.request.initial = kthStart(p, k, 1);
+  e.request.solver.restore_feasibility = true;
+  e.first = gaitopt::optimizeGait(p.evaluator, e.request);
+  return e;
+}
+
 }  // namespace
 
 TEST_CASE("refine: the perturbation box is the random-start box scaled", "[optimize]") {
@@ -69,12 +86,8 @@ TEST_CASE("refine: a restart from an early SLSQP stop reaches the optimum", "[op
   // (SLSQP's relative step test on a stale quasi-Newton model); restarts from that point
   // reach the optimum found from the configured start.
   const ConfigProblem p("chevallereau_aoustin_0.75.yaml");
-  const gaitopt::OptimizationResult reference = gaitopt::optimizeGait(p.evaluator, p.request());
+  const auto [reference, req, first] = earlyStop(p, 1);
   REQUIRE(reference.status == "optimal");
-  gaitopt::OptimizationRequest req = p.request();
-  req.initial = kthStart(p, 1, 1);
-  req.solver.restore_feasibility = true;
-  const gaitopt::OptimizationResult first = gaitopt::optimizeGait(p.evaluator, req);
   REQUIRE(first.status == "optimal");
   CHECK(p.criterion(first) > 1.2 * p.criterion(reference));  // stopped early without the lever
 
@@ -136,12 +149,8 @@ TEST_CASE("refine: perturbed restarts leave an early stop that a restart retrace
   // restart from it retraces the same SLSQP path and finds nothing lower. The perturbed
   // restarts reach the configured optimum's cluster (0.1 %).
   const ConfigProblem p("chesse_0.85.yaml");
-  const gaitopt::OptimizationResult reference = gaitopt::optimizeGait(p.evaluator, p.request());
+  const auto [reference, req, first] = earlyStop(p, 3);
   REQUIRE(reference.status == "optimal");
-  gaitopt::OptimizationRequest req = p.request();
-  req.initial = kthStart(p, 3, 1);
-  req.solver.restore_feasibility = true;
-  const gaitopt::OptimizationResult first = gaitopt::optimizeGait(p.evaluator, req);
   REQUIRE(first.status == "optimal");
   CHECK(p.criterion(first) > 1.05 * p.criterion(reference));
 
