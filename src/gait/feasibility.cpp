@@ -51,11 +51,13 @@ FeasibilityVerdict feasibilityVerdict(const GaitEvaluator& ev, const GaitParamet
     for (int k = g.offset; k < g.offset + g.count; ++k) {
       if (e.state[k] == ConstraintState::NotComputed) continue;
       v.max_violation = std::max(v.max_violation, e.g[k]);
+      v.worst_scaled = std::max(v.worst_scaled, e.g[k] / scale);
       if (!(e.g[k] <= kFeasibilityTolerance * scale)) unmet[id] = true;
     }
   }
   if (e.motion_computed) {
     v.between_nodes = checkBetweenNodes(ev, p);
+    v.worst_scaled = std::max(v.worst_scaled, v.between_nodes.worst_scaled);
     for (std::size_t g = 0; g < unmet.size(); ++g)
       if (v.between_nodes.group_worst_scaled[g] > kFeasibilityTolerance) unmet[g] = true;
   }
@@ -63,6 +65,7 @@ FeasibilityVerdict feasibilityVerdict(const GaitEvaluator& ev, const GaitParamet
   if (speed && zeroDynamicsComputed(ev, e)) {
     v.speed_error = e.speed - *speed;
     v.max_violation = std::max(v.max_violation, std::abs(*v.speed_error));
+    v.worst_scaled = std::max(v.worst_scaled, std::abs(*v.speed_error));
     speed_unmet = !(std::abs(*v.speed_error) <= kFeasibilityTolerance);
   }
   for (std::size_t g = 0; g < unmet.size(); ++g)

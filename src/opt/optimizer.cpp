@@ -219,15 +219,26 @@ GaitParameters polish(GaitEvaluationCache& cache, const GaitParameters& p,
 // as a first-order optimum (opt/active_set_newton.hpp).
 constexpr double kKktTol = 1e-3;
 
+// A point the run met (its start, each solve's end, each closing) and the status it would end
+// with. A run whose last point breaks the verdict returns the best of them instead (measured:
+// chesse_0.85_thesis refused a closing met at the nodes and 1.1e-2 scaled off between them,
+// and its restarts drifted to 0.21 off, 29.7 N·m at the nodes).
+struct MetPoint {
+  GaitParameters x;
+  NlpStatus status;
+};
+using MetPoints = std::vector<MetPoint>;
+
 // A stage that ended with its active constraints slightly off: closed by Newton on the active
 // set; kept when that meets every constraint, and counted solved when its KKT certificate
 // holds (whatever the solver's own stopping test said). Returns whether the stage is done:
 // only when certified, a feasible closing of an early SLSQP stop being the next restart's
 // start (measured: chesse_0.85_ss5_ds2 ended `optimal` at one, 4641.9, instead of 2132.9).
 bool closeStage(GaitEvaluationCache& cache, const OptimizationRequest& req, GaitParameters& p,
-                NlpStatus& status, std::ostream* log, OptimizationResult& r) {
+                NlpStatus& status, std::ostream* log, OptimizationResult& r, MetPoints& met) {
   const ActiveSetClosing c =
       closeActiveSet(cache, p, req.criterion, req.speed, kFeasibilityTol, kInterior);
+  met.push_back({c.x, c.certified(kKktTol) ? NlpStatus::Solved : status});
   // The closing moves only the node rows; a point it leaves unmet between the nodes is no
   // better a restart point than the solver's own (measured: C&A restarted from one ends at
   // 9496.4 instead of 8817.4).
@@ -247,12 +258,10 @@ bool closeStage(GaitEvaluationCache& cache, const OptimizationRequest& req, Gait
   return certified;
 }
 
-void classify(const GaitEvaluator& ev, const OptimizationRequest& req, NlpStatus solver_status,
-              OptimizationResult& r) {
+void classify(const FeasibilityVerdict& v, NlpStatus solver_status, OptimizationResult& r) {
   // The one verdict (gait/feasibility.hpp), between the nodes too: an unmet constraint is
   // "infeasible" whatever the solver says; a feasible point is "optimal" only if the solver
   // also converged.
-  const FeasibilityVerdict v = feasibilityVerdict(ev, r.parameters, r.evaluation, req.speed);
   r.constraint_violation = v.max_violation;
   r.unmet_level = v.failed_level;
   r.unmet_constraints = v.unmet_groups;
@@ -261,6 +270,43 @@ void classify(const GaitEvaluator& ev, const OptimizationRequest& req, NlpStatus
   else if (solver_status == NlpStatus::Solved) r.status = "optimal";
   else if (solver_status == NlpStatus::MaxIterations) r.status = "max_iter";
   else r.status = "failed";
+}
+
+// A point's rank under the one verdict: feasible first, then (infeasible) the worst scaled
+// violation, nodes, between the nodes and speed together, then the criterion.
+struct Standing {
+  GaitEvaluation<double> evaluation;
+  FeasibilityVerdict verdict;
+  double violation, criterion;
+  Standing(const GaitEvaluator& ev, const OptimizationRequest& req, const GaitParameters& p)
+      : evaluation(ev.evaluate(p)),
+        verdict(feasibilityVerdict(ev, p, evaluation, req.speed)),
+        // A step without its motion has fewer entries computed, not a smaller violation.
+        violation(evaluation.motion_computed ? verdict.worst_scaled : INFINITY),
+        criterion(criterionValue(evaluation, req.criterion)) {}
+  bool betterThan(const Standing& o) const {
+    if (verdict.feasible != o.verdict.feasible) return verdict.feasible;
+    if (!verdict.feasible && violation != o.violation) return violation < o.violation;
+    return criterion < o.criterion;
+  }
+};
+
+// The run's result: its last point, or, when that breaks the verdict, the best point it met
+// (a feasible last point is kept as it is: the polish may cost up to 1e-6 more to hold g ≤ 0).
+void setResult(const GaitEvaluator& ev, const OptimizationRequest& req, GaitParameters p,
+               NlpStatus status, const MetPoints& met, OptimizationResult& r) {
+  Standing best(ev, req, p);
+  if (!best.verdict.feasible)
+    for (const MetPoint& m : met) {
+      Standing s(ev, req, m.x);
+      if (!s.betterThan(best)) continue;
+      best = std::move(s);
+      p = m.x;
+      status = m.status;
+    }
+  r.parameters = p;
+  r.evaluation = std::move(best.evaluation);
+  classify(best.verdict, status, r);
 }
 
 }  // namespace
@@ -292,7 +338,7 @@ GaitParameters repairLowerLevels(GaitEvaluationCache& cache, GaitParameters p,
 // The full problem from a computable point, with restarts and the final polish.
 GaitParameters solveFullProblem(GaitEvaluationCache& cache, GaitParameters p,
                                 const OptimizationRequest& req, std::ostream* log,
-                                OptimizationResult& r, NlpStatus& status) {
+                                OptimizationResult& r, NlpStatus& status, MetPoints& met) {
   const GaitEvaluator& ev = cache.evaluator();
   // Objective of order one at the start, so the solver's tolerances are relative.
   const double scale = std::max(1.0, std::abs(criterionValue(cache.values(p), req.criterion)));
@@ -330,6 +376,7 @@ GaitParameters solveFullProblem(GaitEvaluationCache& cache, GaitParameters p,
     if (!cache.values(sol.x).motion_computed) continue;  // restart from the last point
     status = sol.status;
     p = sol.x;
+    met.push_back({p, status});
     // The DS rows between the nodes join, warm from this point, once a solve ends with a DS
     // constraint unmet there.
     if (settings.between_nodes && !settings.ds_between_nodes &&
@@ -342,7 +389,7 @@ GaitParameters solveFullProblem(GaitEvaluationCache& cache, GaitParameters p,
     // on the default robot, torque_envelope_ds 2.3e-3 scaled), a point the node-only check
     // took as done; a restart rebuilds the quasi-Newton model from it.
     const bool solved = status == NlpStatus::Solved && holdsBetweenNodes(ev, settings, p);
-    if (meetsAll(ev, req, cache.values(p)) ? solved : closeStage(cache, req, p, status, log, r))
+    if (meetsAll(ev, req, cache.values(p)) ? solved : closeStage(cache, req, p, status, log, r, met))
       break;
   }
   return status == NlpStatus::Solved && !interiorSolver()
@@ -357,7 +404,7 @@ GaitParameters solveFullProblem(GaitEvaluationCache& cache, GaitParameters p,
 // result replaces `p` only when it meets every constraint.
 GaitParameters restoreFeasibility(GaitEvaluationCache& cache, const GaitParameters& p,
                                   const OptimizationRequest& req, std::ostream* log,
-                                  OptimizationResult& r, NlpStatus& status) {
+                                  OptimizationResult& r, NlpStatus& status, MetPoints& met) {
   SolverSettings projection = req.solver;
   projection.backend = Backend::Ipopt;
   if (req.solver.backend != Backend::Ipopt) projection.hessian = HessianMode::LimitedMemory;
@@ -372,7 +419,8 @@ GaitParameters restoreFeasibility(GaitEvaluationCache& cache, const GaitParamete
   if (!meetsAll(cache.evaluator(), req, cache.values(feasible))) return p;
   // Re-solved with the configured backend: an Ipopt re-solve measured worse (README).
   NlpStatus again = NlpStatus::Failed;
-  const GaitParameters q = solveFullProblem(cache, feasible, req, log, r, again);
+  met.push_back({feasible, NlpStatus::Failed});
+  const GaitParameters q = solveFullProblem(cache, feasible, req, log, r, again, met);
   if (meetsAll(cache.evaluator(), req, cache.values(q))) {
     status = again;
     return q;
@@ -390,13 +438,12 @@ OptimizationResult optimizeGait(const GaitEvaluator& ev, const OptimizationReque
   GaitParameters p = gaitVariables(ev.model(), req.initial, ev.options().parameterisation).initial;
   if (req.solver.hierarchy == HierarchyStrategy::Staged) p = repairLowerLevels(cache, p, req, log, r);
   NlpStatus status = NlpStatus::Failed;
-  if (cache.values(p).motion_computed) p = solveFullProblem(cache, p, req, log, r, status);
+  MetPoints met{{p, status}};
+  if (cache.values(p).motion_computed) p = solveFullProblem(cache, p, req, log, r, status, met);
   if (req.solver.restore_feasibility && cache.values(p).motion_computed &&
       !meetsAll(ev, req, cache.values(p)))
-    p = restoreFeasibility(cache, p, req, log, r, status);
-  r.parameters = p;
-  r.evaluation = ev.evaluate(p);
-  classify(ev, req, status, r);
+    p = restoreFeasibility(cache, p, req, log, r, status, met);
+  setResult(ev, req, p, status, met, r);
   r.function_evaluations = cache.valueEvaluations();
   r.gradient_evaluations = cache.gradientEvaluations();
   r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -31,6 +31,9 @@ struct FeasibilityVerdict {
   int failed_level = -1;  // lowest level with an unmet constraint (5 for the speed), −1: none
   std::vector<std::string> unmet_groups;  // groups of that level ("speed" for the speed)
   double max_violation = 0.0;  // largest g over computed node entries and |speed error|, ≥ 0
+  // Largest scaled value over the node entries, the 10× finer check and |speed error| (m/s):
+  // how far a step is from the verdict, comparable between steps of one problem.
+  double worst_scaled = 0.0;
   std::optional<double> speed_error;
   BetweenNodesCheck between_nodes;  // computed only when the motion is
 };
