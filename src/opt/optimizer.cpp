@@ -238,7 +238,8 @@ bool closeStage(GaitEvaluationCache& cache, const OptimizationRequest& req, Gait
                 NlpStatus& status, std::ostream* log, OptimizationResult& r, MetPoints& met) {
   const ActiveSetClosing c =
       closeActiveSet(cache, p, req.criterion, req.speed, kFeasibilityTol, kInterior);
-  met.push_back({c.x, c.certified(kKktTol) ? NlpStatus::Solved : status});
+  // Solved only when certified: the solver's own status belongs to the point it stopped at.
+  met.push_back({c.x, c.certified(kKktTol) ? NlpStatus::Solved : NlpStatus::Failed});
   // The closing moves only the node rows; a point it leaves unmet between the nodes is no
   // better a restart point than the solver's own (measured: C&A restarted from one ends at
   // 9496.4 instead of 8817.4).
