@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # What CI runs (.ci/run): install what is missing, build, and run every test; then the same
-# suite under AddressSanitizer + UndefinedBehaviorSanitizer in build-san/ (clang, -O1, slow
+# suite under AddressSanitizer + UndefinedBehaviorSanitizer in build-san/ (clang, -O2, slow
 # optimisation tests in their light form, GAITOPT_TEST_LIGHT=1), and a libFuzzer smoke run of
 # every reader from that same build directory (scripts/fuzz.sh --smoke, FUZZ_SECONDS per
 # harness, default 20). SANITIZE=0 or FUZZ=0 skip those two passes (README, "Reliability", for
