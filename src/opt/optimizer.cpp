@@ -296,6 +296,7 @@ struct Standing {
 // (a feasible last point is kept as it is: the polish may cost up to 1e-6 more to hold g ≤ 0).
 void setResult(const GaitEvaluator& ev, const OptimizationRequest& req, GaitParameters p,
                NlpStatus status, const MetPoints& met, OptimizationResult& r) {
+  r.last_parameters = p;
   Standing best(ev, req, p);
   if (!best.verdict.feasible)
     for (const MetPoint& m : met) {

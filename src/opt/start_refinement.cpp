@@ -39,7 +39,10 @@ StartRefinement refineStart(const GaitEvaluator& ev, const OptimizationRequest& 
   while (!optimal(r) && out.retries < s.max_retries) {
     ++out.retries;
     if (log) *log << "--- retry " << out.retries << " from a perturbed point\n";
-    const GaitParameters start = randomStart(r.parameters, rng, par, s.perturbation);
+    // Near where the last solve ended, not the best point the run returned (measured on
+    // Chessé, 50 starts: 33 in the best cluster against 29 when centred on the returned one).
+    const GaitParameters& centre = r.last_parameters.size() ? r.last_parameters : r.parameters;
+    const GaitParameters start = randomStart(centre, rng, par, s.perturbation);
     const OptimizationResult next = solveFrom(ev, request, start, log);
     account(r, next, optimal(next));
   }

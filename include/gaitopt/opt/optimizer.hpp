@@ -67,6 +67,9 @@ struct StageReport {
 
 struct OptimizationResult {
   GaitParameters parameters;
+  // Where the run's last solve ended: `parameters` unless the run returned a better point it
+  // met (a last point unmet); retries start near it.
+  GaitParameters last_parameters;
   GaitEvaluation<double> evaluation;
   std::string status;  // "optimal", "infeasible", "max_iter", "failed"
   int iterations = 0;
