@@ -159,27 +159,31 @@ TEST_CASE("optimize: a run that ends unmet returns the least-violating point it 
   CHECK(last.worst_scaled > 10.0 * v.worst_scaled);
 }
 
+// The shipped config `name` ends optimal and feasible between the nodes; returns its run.
+Run requireOptimal(const std::string& name) {
+  Run run = optimizeConfig(name, [](OptimizeConfig&) {});
+  const OptimizationResult& r = run.result;
+  INFO(name << ": " << r.status << " C_Gamma " << r.evaluation.C_Gamma << ", between nodes "
+            << r.between_nodes_worst);
+  CHECK(r.status == "optimal");
+  CHECK(r.between_nodes_worst <= gaitopt::kFeasibilityTolerance);
+  return run;
+}
+
 TEST_CASE("optimize: the thesis-rules and B-spline Chesse configurations end optimal",
           "[optimize][between_nodes]") {
   // Both with the exchange method; with every grid entry in one SLSQP problem they ended
   // infeasible between the nodes (the test above; B-spline: 1479.79, clearance 2.6e-4 scaled).
-  const Run thesis = optimizeConfig("chesse_0.85_thesis.yaml", [](OptimizeConfig&) {});
-  const OptimizationResult& a = thesis.result;
-  INFO("thesis: " << a.status << " C_Gamma " << a.evaluation.C_Gamma << ", between nodes "
-                  << a.between_nodes_worst);
-  CHECK(a.status == "optimal");
-  CHECK(a.between_nodes_worst <= gaitopt::kFeasibilityTolerance);
-  // Below --global 12's 2597.6 from random starts; the thesis' Table 3.1: 2349.
-  CHECK(a.evaluation.C_Gamma == Approx(2408.64).epsilon(1e-4));
-  // B-spline {7, 3}: ~6 s in Release, too slow for the sanitizer pass.
+  // The thesis-rules start is the optimum of the stricter full-envelope problem, feasible
+  // here: the result must improve on it.
+  const Run thesis = requireOptimal("chesse_0.85_thesis.yaml");
+  const gaitopt::GaitParameters start =
+      gaitopt::configuredInitialGuess(thesis.config, thesis.evaluator.model());
+  CHECK(thesis.result.evaluation.C_Gamma < thesis.evaluator.evaluate(start).C_Gamma);
+  // B-spline {7, 3}: ~6 s in Release, too slow for the sanitizer pass. Issue 14 item 5's
+  // target: at or below Chesse's Pontryagin value, 1836.
   if (gaitopt::test::lightTests()) return;
-  const Run bspline = optimizeConfig("chesse_0.85_bspline.yaml", [](OptimizeConfig&) {});
-  const OptimizationResult& b = bspline.result;
-  INFO("B-spline: " << b.status << " C_Gamma " << b.evaluation.C_Gamma << ", between nodes "
-                    << b.between_nodes_worst);
-  CHECK(b.status == "optimal");
-  CHECK(b.between_nodes_worst <= gaitopt::kFeasibilityTolerance);
-  CHECK(b.evaluation.C_Gamma == Approx(1435.65).epsilon(1e-4));
+  CHECK(requireOptimal("chesse_0.85_bspline.yaml").result.evaluation.C_Gamma <= 1836.0);
 }
 
 TEST_CASE("optimize: the DS between-node rows get the piece derivatives from a shared cache",
