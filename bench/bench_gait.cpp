@@ -2,7 +2,10 @@
 // criteria, motion) and of one evaluation with the exact gradient (evaluateWithGradient: the
 // double pass plus the forward-AD pass with 17 directions; with and without the derivatives of
 // the DS piece samples, which only the DS between-node rows need), on the default robot
-// (configs/robot/rabbit_miossec.yaml) with default GaitOptions.
+// (configs/robot/rabbit_miossec.yaml) with default GaitOptions, as the optimiser calls it for a
+// C_Γ objective (criteria_refinement 1: W and C_E on the SS grid); and both again with the
+// default criteria_refinement 2 (W and C_E sampled on the twice finer SS grid), as
+// `gaitopt evaluate` and the written results use it.
 //
 //   bench_gait [--json FILE] [--batch N] [--repeats N] [--help]
 //
@@ -117,7 +120,7 @@ struct Measured {
   int failed_level = -1;
   bool motion_computed = false;
   double C_Gamma = 0.0;
-  Stats evaluate, gradient, gradient_nodes;
+  Stats evaluate, gradient, gradient_nodes, evaluate_refined, gradient_refined;
 };
 
 }  // namespace
@@ -134,7 +137,8 @@ int main(int argc, char** argv) {
     std::cerr << "bench_gait: error: " << e.what() << "\n";
     return 2;
   }
-  const GaitEvaluator& ev = *evaluator;
+  const GaitEvaluator& refined = *evaluator;
+  const GaitEvaluator ev = refined.withCriteriaRefinement(1);  // the optimiser's (C_Γ objective)
   std::string step_note;
   const std::vector<StepSet> sets = stepSets(step_note);
   const Environment env;
@@ -157,26 +161,34 @@ int main(int argc, char** argv) {
     m.motion_computed = e.motion_computed;
     m.C_Gamma = e.C_Gamma;
     const GaitParameters p = set.p;
-    m.evaluate = measure("evaluate", "GaitEvaluator::evaluate (values), double", batch, repeats,
-                         [&ev, &p]() {
-                           const GaitEvaluation<double> r = ev.evaluate(p);
-                           escape(r);
-                           return r.C_Gamma + r.g[0];
-                         });
-    const auto gradient = [&ev, &p](bool ds_pieces) {
-      return [&ev, &p, ds_pieces]() {
-        const GaitGradient r = ev.evaluateWithGradient(p, ds_pieces);
+    const auto values = [&p](const GaitEvaluator& e) {
+      return [&e, &p]() {
+        const GaitEvaluation<double> r = e.evaluate(p);
+        escape(r);
+        return r.C_Gamma + r.g[0];
+      };
+    };
+    const auto gradient = [&p](const GaitEvaluator& e, bool ds_pieces) {
+      return [&e, &p, ds_pieces]() {
+        const GaitGradient r = e.evaluateWithGradient(p, ds_pieces);
         escape(r);
         return r.dC_Gamma(0) + r.dg(0, 3);
       };
     };
+    m.evaluate = measure("evaluate", "GaitEvaluator::evaluate (values), double", batch, repeats,
+                         values(ev));
     m.gradient = measure("evaluateWithGradient",
                          "values + exact gradient (forward AD, 17 directions)", batch, repeats,
-                         gradient(true));
+                         gradient(ev, true));
     m.gradient_nodes = measure("gradient, no DS pieces",
                                "as evaluateWithGradient without the DS piece derivatives (the "
                                "optimiser while the DS between-node rows are off)",
-                               batch, repeats, gradient(false));
+                               batch, repeats, gradient(ev, false));
+    m.evaluate_refined = measure("evaluate, W/C_E x2", "evaluate with criteria_refinement 2",
+                                 batch, repeats, values(refined));
+    m.gradient_refined = measure("gradient, W/C_E x2",
+                                 "evaluateWithGradient with criteria_refinement 2", batch,
+                                 repeats, gradient(refined, true));
     results.push_back(m);
   }
 
@@ -194,6 +206,8 @@ int main(int argc, char** argv) {
     row(m.evaluate, kEvaluateTargetNs);
     row(m.gradient, kGradientTargetNs);
     row(m.gradient_nodes, kGradientTargetNs);
+    row(m.evaluate_refined, kEvaluateTargetNs);
+    row(m.gradient_refined, kGradientTargetNs);
   }
   for (const Measured& m : results)
     std::printf("\n%s: failed_level %d, motion computed %s, C_Gamma %.6g", m.set.name.c_str(),
@@ -227,6 +241,8 @@ int main(int argc, char** argv) {
       emit(m.evaluate, kEvaluateTargetNs);
       emit(m.gradient, kGradientTargetNs);
       emit(m.gradient_nodes, kGradientTargetNs);
+      emit(m.evaluate_refined, kEvaluateTargetNs);
+      emit(m.gradient_refined, kGradientTargetNs);
     }
     w.endArray();
     w.endObject();

@@ -39,6 +39,13 @@ GaitEvaluator::GaitEvaluator(const RobotParams& robot, const GaitOptions& option
                                 options.parameterisation.label());
 }
 
+GaitEvaluator GaitEvaluator::withCriteriaRefinement(int refinement) const {
+  GaitEvaluator r = *this;
+  r.options_.criteria_refinement = refinement;
+  r.grids_ = GaitGrids(r.options_);
+  return r;
+}
+
 void GaitEvaluator::checkSize(const GaitParameters& p) const {
   if (p.size() != numParameters())
     throw std::invalid_argument("gait parameters: expected " + std::to_string(numParameters()) +

@@ -12,6 +12,7 @@ BetweenNodesCheck checkBetweenNodes(const GaitEvaluator& ev, const GaitParameter
   GaitOptions o = ev.options();
   o.ss_nodes *= kBetweenNodesRefinement;
   o.ds_nodes *= kBetweenNodesRefinement;
+  o.criteria_refinement = 1;  // constraints only: W and C_E are not read
   const GaitEvaluator fine(ev.model().robot, o, ev.model().options);
   const GaitEvaluation<double> e = fine.evaluate(p);
   const ConstraintLayout& layout = fine.layout();

@@ -249,6 +249,7 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
   w.key("sample_rate").value(o.sample_rate);
   w.key("ss_nodes").value(o.ss_nodes);
   w.key("ds_nodes").value(o.ds_nodes);
+  w.key("criteria_refinement").value(o.criteria_refinement);
   w.key("f_min").value(o.f_min);
   w.key("alphadot_margin").value(o.alphadot_margin);
   w.key("ds_alphadot_max").value(o.ds_alphadot_max);

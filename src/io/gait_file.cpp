@@ -14,6 +14,7 @@ namespace {
 // Chebyshev grids of more than 512 intervals cost far more than they gain (the phase
 // integrands are smooth) and would make the constraint vector huge.
 constexpr int kMaxNodes = 512;
+constexpr int kMaxCriteriaRefinement = 4;
 // A step lasts about a second; 100 kHz already gives ~10^5 rows per file.
 constexpr double kMaxSampleRate = 1e5;
 
@@ -35,14 +36,18 @@ const Range kSpeed{0.0, kMaxWalkingSpeed, false, "m/s"};
 const Range kSmoothing{0.0, 1e3, true, "rad/s"};
 }  // namespace ranges
 
-int nodesOr(const YamlMap& m, const std::string& key, int fallback) {
+int integerInOr(const YamlMap& m, const std::string& key, int lo, int hi, int fallback) {
   const std::optional<double> v = m.optionalNumber(key);
   if (!v) return fallback;
-  if (std::floor(*v) != *v || *v < 2.0 || *v > kMaxNodes) {
-    throw m.error(key, "must be an integer from 2 to " + std::to_string(kMaxNodes) + ", got " +
-                           m.text(key));
+  if (std::floor(*v) != *v || *v < lo || *v > hi) {
+    throw m.error(key, "must be an integer from " + std::to_string(lo) + " to " +
+                           std::to_string(hi) + ", got " + m.text(key));
   }
   return static_cast<int>(*v);
+}
+
+int nodesOr(const YamlMap& m, const std::string& key, int fallback) {
+  return integerInOr(m, key, 2, kMaxNodes, fallback);
 }
 
 bool booleanOr(const YamlMap& m, const std::string& key, bool fallback) {
@@ -157,6 +162,14 @@ GaitOptions parseGaitOptions(const YamlMap& m, ModelOptions& model_options) {
   o.sample_rate = numberInOr(m, "sample_rate", ranges::kSampleRate, o.sample_rate);
   o.ss_nodes = nodesOr(m, "ss_nodes", o.ss_nodes);
   o.ds_nodes = nodesOr(m, "ds_nodes", o.ds_nodes);
+  o.criteria_refinement =
+      integerInOr(m, "criteria_refinement", 1, kMaxCriteriaRefinement, o.criteria_refinement);
+  if (o.ss_nodes * o.criteria_refinement > 2 * kMaxNodes) {
+    throw m.error("criteria_refinement",
+                  "ss_nodes * criteria_refinement must be at most " +
+                      std::to_string(2 * kMaxNodes) + ", got " + std::to_string(o.ss_nodes) +
+                      " * " + std::to_string(o.criteria_refinement));
+  }
   o.f_min = numberInOr(m, "f_min", ranges::kFMin, o.f_min);
   o.alphadot_margin = numberInOr(m, "alphadot_margin", ranges::kRate, o.alphadot_margin);
   o.ds_alphadot_max = numberInOr(m, "ds_alphadot_max", ranges::kNegativeRate, o.ds_alphadot_max);
@@ -219,6 +232,7 @@ std::string gaitOptionsYaml(const GaitOptions& o, const ModelOptions& mo, int in
   num("sample_rate", o.sample_rate);
   text("ss_nodes", std::to_string(o.ss_nodes));
   text("ds_nodes", std::to_string(o.ds_nodes));
+  text("criteria_refinement", std::to_string(o.criteria_refinement));
   num("f_min", o.f_min);
   num("alphadot_margin", o.alphadot_margin);
   num("ds_alphadot_max", o.ds_alphadot_max);

@@ -105,6 +105,7 @@ void requireSameOptions(const GaitOptions& a, const GaitOptions& b) {
   CHECK(sameBits(a.sample_rate, b.sample_rate));
   CHECK(a.ss_nodes == b.ss_nodes);
   CHECK(a.ds_nodes == b.ds_nodes);
+  CHECK(a.criteria_refinement == b.criteria_refinement);
   CHECK(sameBits(a.f_min, b.f_min));
   CHECK(sameBits(a.alphadot_margin, b.alphadot_margin));
   CHECK(sameBits(a.ds_alphadot_max, b.ds_alphadot_max));
@@ -176,6 +177,7 @@ TEST_CASE("gaitYaml round-trips parameters and options bit for bit", "[gait_io]"
   o.sample_rate = 333.3;
   o.ss_nodes = 2;
   o.ds_nodes = 512;
+  o.criteria_refinement = 3;
   o.f_min = 1e-7;
   o.alphadot_margin = 0.0;
   o.ds_alphadot_max = -1e-12;
@@ -277,6 +279,17 @@ TEST_CASE("bad gait files name the file, the key and its line", "[gait_io]") {
     requireError(gaitWith({{24, "  ss_nodes: 32.5"}}), "options.ss_nodes", 24);
     requireError(gaitWith({{24, "  ss_nodes: 1"}}), "options.ss_nodes", 24);
     requireError(gaitWith({{24, "  ds_nodes: 513"}}), "options.ds_nodes", 24);
+  }
+  SECTION("criteria_refinement: an integer from 1 to 4, ss_nodes times it at most 1024") {
+    const auto with = [](const std::string& ss_nodes, const std::string& refinement) {
+      return gaitWith({{24, "  ss_nodes: " + ss_nodes + "\n  criteria_refinement: " + refinement}});
+    };
+    const std::string range = "must be an integer from 1 to 4";
+    requireError(with("32", "0"), "options.criteria_refinement", 25, range + ", got 0");
+    requireError(with("32", "5"), "options.criteria_refinement", 25, range + ", got 5");
+    requireError(with("32", "1.5"), "options.criteria_refinement", 25, range + ", got 1.5");
+    requireError(with("512", "3"), "options.criteria_refinement", 25,
+                 "ss_nodes * criteria_refinement must be at most 1024, got 512 * 3");
   }
   SECTION("out-of-range option values") {
     requireError(gaitWith({{22, "  sample_rate: 0"}}), "options.sample_rate", 22);

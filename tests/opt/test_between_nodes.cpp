@@ -69,6 +69,12 @@ TEST_CASE("optimize: the status is the verdict that evaluate writes", "[optimize
   CHECK(v.between_nodes.ss_nodes == 320);
   CHECK(v.between_nodes.worst_scaled <= gaitopt::kFeasibilityTolerance);
   CHECK(r.between_nodes_worst == v.between_nodes.worst_scaled);
+  // Solved with W and C_E on the SS grid alone (C_Γ objective), reported on the configured one.
+  REQUIRE(run.evaluator.options().criteria_refinement == 2);
+  const gaitopt::GaitEvaluation<double> reported = run.evaluator.evaluate(r.parameters);
+  CHECK(r.evaluation.W == reported.W);
+  CHECK(r.evaluation.C_E == reported.C_E);
+  CHECK(r.evaluation.C_Gamma == reported.C_Gamma);
   // `gaitopt evaluate` of the written gait: the same evaluation, the same verdict.
   const std::string summary =
       gaitopt::gaitSummaryJson(run.evaluator, r.parameters, run.evaluator.evaluate(r.parameters));

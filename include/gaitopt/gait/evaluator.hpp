@@ -13,12 +13,16 @@
 
 namespace gaitopt {
 
-// Chebyshev grids of the phases: SS in α and DS in t for constraints and quadrature, and the
-// grid of each DS quadrature piece.
+// Chebyshev grids of the phases: SS in α and DS in t for constraints and quadrature, the SS
+// grid of W's and C_E's integrands (GaitOptions::criteria_refinement times finer, nested), and
+// the grid of each DS quadrature piece.
 struct GaitGrids {
   explicit GaitGrids(const GaitOptions& o)
-      : ss(o.ss_nodes), ds(o.ds_nodes), ds_piece(o.ds_nodes) {}
-  ChebyshevGrid ss, ds, ds_piece;
+      : ss(o.ss_nodes),
+        ss_criteria(o.ss_nodes * o.criteria_refinement),
+        ds(o.ds_nodes),
+        ds_piece(o.ds_nodes) {}
+  ChebyshevGrid ss, ss_criteria, ds, ds_piece;
 };
 
 // Values of one evaluation with first derivatives with respect to the parameters.
@@ -41,6 +45,9 @@ class GaitEvaluator {
   // a step whose force split switches branch (bench_gait, "gradient, no DS pieces").
   GaitGradient evaluateWithGradient(const GaitParameters& p, bool ds_piece_gradients = true) const;
   int numParameters() const { return options_.parameterisation.size(); }
+  // The same evaluator with W and C_E on another SS grid (GaitOptions::criteria_refinement,
+  // ≥ 1); every other value is the same number.
+  GaitEvaluator withCriteriaRefinement(int refinement) const;
 
   const Model& model() const { return model_; }
   const GaitOptions& options() const { return options_; }

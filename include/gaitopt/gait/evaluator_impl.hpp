@@ -26,6 +26,7 @@ template <class S> struct EvalContext {
   const GaitOptions& options;
   const ConstraintLayout& layout;
   const ChebyshevGrid& ss_grid;
+  const ChebyshevGrid& ss_criteria_grid;  // W and C_E in the SS (GaitGrids::ss_criteria)
   const ChebyshevGrid& ds_grid;
   const ChebyshevGrid& piece_grid;
   const GaitVector<S>& p;
@@ -237,6 +238,11 @@ template <class S> S saturatedF(const S& f, double f_min) {
   return valueOf(f) > f_min ? f : S(f_min);  // (3.54)
 }
 
+// dΦ/dα = −2 G₁ f with the saturated f (3.14), (3.54).
+template <class S> S phiRate(const SsPathPoint<S>& pt, double f_min) {
+  return -2.0 * pt.G(0) * saturatedF(S(pt.tau_a(0)), f_min);
+}
+
 // (3.15), (3.16) with the saturated f.
 template <class S>
 void zeroDynamicsRates(const SsPathPoint<S>& pt, const S& phi, const GaitMotion<S>& mo,
@@ -279,9 +285,8 @@ template <class S> void zeroDynamicsStage(EvalContext<S>& c, std::vector<SsPathP
   const ConstraintState st = c.stateAbove(1);
   for (int k = 0; k < n; ++k) {
     pts[k] = ssPathPoint(c.model, mo, S(alphas(k)));
-    const S f = pts[k].tau_a(0);
-    c.set(kFPositive, k, o.f_min - f, st);                           // (3.45)
-    dphi(k) = -2.0 * pts[k].G(0) * saturatedF(f, o.f_min);           // (3.14), (3.54)
+    c.set(kFPositive, k, o.f_min - pts[k].tau_a(0), st);  // (3.45)
+    dphi(k) = phiRate(pts[k], o.f_min);
   }
   mo.ss_phi = cumulativeOverInterval(c.ss_grid, dphi, mo.alpha_iSS, mo.alpha_fSS);
   mo.f_iSS = saturatedF(S(pts[0].tau_a(0)), o.f_min);
@@ -535,22 +540,39 @@ void setIntegrands(const Model& m, const PhaseSample<S>& s, int k, const S& phas
 // they are f·(b − a)/2, positive for a positive integrand per unit time (in the SS, α and s
 // decrease with time and α̇ < 0), hence |b − a|/2 times ∫|f| and ∫max(0, ±f) over s ∈ [−1, 1].
 // The kinks of max(0, P) and |Γ*_j ω_j| are appended to `kinks`, in x, in time order.
+constexpr int kCriterionCGamma = 0, kCriterionCE = 1, kCriterionW = 2, kCriterionCFrott = 3;
+
+// C_Γ and C_frott: smooth integrands, the Clenshaw–Curtis sum.
 template <class S>
-std::array<S, 4> integrateCriteria(const ChebyshevGrid& grid, const IntegrandValues<S>& f,
-                                   const S& a, const S& b, std::vector<S>& kinks) {
+void integrateSmoothCriteria(const ChebyshevGrid& grid, const IntegrandValues<S>& f, const S& a,
+                             const S& b, std::array<S, 4>& r) {
+  r[kCriterionCGamma] = integrateOverInterval(grid, f[kTorque2], a, b);
+  r[kCriterionCFrott] = integrateOverInterval(grid, f[kMechanical], a, b);
+}
+
+// C_E and W: the interpolants split at their roots (math/chebyshev_abs_integral.hpp).
+template <class S>
+void integrateKinkedCriteria(const ChebyshevGrid& grid, const IntegrandValues<S>& f, const S& a,
+                             const S& b, std::array<S, 4>& r, std::vector<S>& kinks) {
   const double orientation = valueOf(b) < valueOf(a) ? -1.0 : 1.0;
   const S half_length = 0.5 * orientation * (b - a);
   const Eigen::Matrix<S, Eigen::Dynamic, 1> power = f[kPower] * S(orientation);
   std::vector<S> roots;
-  std::array<S, 4> r;
-  r[0] = integrateOverInterval(grid, f[kTorque2], a, b);
-  r[1] = half_length * integratePositivePart(grid, power, roots);
-  r[2] = S(0.0);
-  for (int j = 0; j < 4; ++j) r[2] += half_length * integrateAbs(grid, f[kJointPower + j], roots);
-  r[3] = integrateOverInterval(grid, f[kMechanical], a, b);
+  r[kCriterionCE] = half_length * integratePositivePart(grid, power, roots);
+  r[kCriterionW] = S(0.0);
+  for (int j = 0; j < 4; ++j)
+    r[kCriterionW] += half_length * integrateAbs(grid, f[kJointPower + j], roots);
   std::sort(roots.begin(), roots.end(),
             [](const S& x, const S& y) { return valueOf(x) > valueOf(y); });
   for (const S& s : roots) kinks.push_back(a + 0.5 * (1.0 - s) * (b - a));
+}
+
+template <class S>
+std::array<S, 4> integrateCriteria(const ChebyshevGrid& grid, const IntegrandValues<S>& f,
+                                   const S& a, const S& b, std::vector<S>& kinks) {
+  std::array<S, 4> r;
+  integrateSmoothCriteria(grid, f, a, b, r);
+  integrateKinkedCriteria(grid, f, a, b, r, kinks);
   return r;
 }
 
@@ -666,6 +688,47 @@ template <class S> std::array<S, 4> dsMotionStage(EvalContext<S>& c, ConstraintS
              : integrateDsPiecewise(c, c.out.ds_pieces);
 }
 
+// The SS integrals of the criteria. W and C_E integrate |Γ*_j ω_j| and max(0, P) split at their
+// roots, i.e. the integrands' interpolant between the nodes, which on the SS grid is accurate
+// to ~10⁻⁹ only (a Clenshaw–Curtis sum, as for C_Γ, is exact far beyond its interpolant): they
+// are sampled on the nested grid GaitGrids::ss_criteria (every r-th node an SS node, whose path
+// point is reused) with Φ (3.14) integrated on that grid. C_Γ and C_frott keep the SS grid.
+template <class S>
+std::array<S, 4> ssCriteria(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts,
+                            const IntegrandValues<S>& ss_int) {
+  const GaitMotion<S>& mo = c.out.motion;
+  const S& a = mo.alpha_iSS;
+  const S& b = mo.alpha_fSS;
+  std::array<S, 4> r;
+  integrateSmoothCriteria(c.ss_grid, ss_int, a, b, r);
+  const ChebyshevGrid& fine = c.ss_criteria_grid;
+  const int refinement = fine.degree() / c.ss_grid.degree();
+  if (refinement == 1) {
+    integrateKinkedCriteria(c.ss_grid, ss_int, a, b, r, c.out.criteria_kinks);
+    return r;
+  }
+  const auto alphas = mappedNodes(fine, a, b);
+  std::vector<SsPathPoint<S>> added;
+  added.reserve(fine.size() - pts.size());
+  for (int k = 0; k < fine.size(); ++k)
+    if (k % refinement != 0) added.push_back(ssPathPoint(c.model, mo, S(alphas(k))));
+  const auto point = [&](int k) -> const SsPathPoint<S>& {
+    return k % refinement == 0 ? pts[k / refinement] : added[k - k / refinement - 1];
+  };
+  const double f_min = c.options.f_min;
+  Eigen::Matrix<S, Eigen::Dynamic, 1> dphi(fine.size());
+  for (int k = 0; k < fine.size(); ++k) dphi(k) = phiRate(point(k), f_min);
+  const auto phi = cumulativeOverInterval(fine, dphi, a, b);
+  IntegrandValues<S> f = integrandValues<S>(fine.size());
+  for (int k = 0; k < fine.size(); ++k) {
+    S ad, add;
+    zeroDynamicsRates(point(k), phi(k), mo, f_min, ad, add);
+    setIntegrands(c.model, ssSample(c.model, point(k), ad, add), k, ad, f);
+  }
+  integrateKinkedCriteria(fine, f, a, b, r, c.out.criteria_kinks);
+  return r;
+}
+
 template <class S>
 void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
   GaitMotion<S>& mo = c.out.motion;
@@ -684,8 +747,7 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
     }
     setIntegrands(c.model, s, k, ad, ss_int);  // dt = dα / α̇ (3.29)
   }
-  const std::array<S, 4> ss_total =
-      integrateCriteria(c.ss_grid, ss_int, mo.alpha_iSS, mo.alpha_fSS, c.out.criteria_kinks);
+  const std::array<S, 4> ss_total = ssCriteria(c, pts, ss_int);
   c.out.ss_criteria_kinks = static_cast<int>(c.out.criteria_kinks.size());
   // Without DS the impact's energy loss is resupplied by the motors within the SS (cyclicity).
   std::array<S, 4> ds_total{S(0.0), S(0.0), S(0.0), S(0.0)};
@@ -738,8 +800,8 @@ void evaluateGaitImpl(const Model& model, const GaitOptions& options,
   out.g.assign(layout.size(), S(0.0));
   out.state.assign(layout.size(), ConstraintState::NotComputed);
   const GaitVector<S> pe = landingParameters(p, options.parameterisation);
-  EvalContext<S> c{model, options, layout,       grids.ss,     grids.ds, grids.ds_piece,
-                   pe,    out,     known_pieces, record_pieces};
+  EvalContext<S> c{model, options, layout, grids.ss,     grids.ss_criteria, grids.ds,
+                   grids.ds_piece, pe, out, known_pieces, record_pieces};
   const bool boundary_ok = boundaryStage(c);
   const bool ds = options.parameterisation.hasDoubleSupport();
   out.step_length = pe(kStepLength);

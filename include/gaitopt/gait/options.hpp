@@ -26,6 +26,11 @@ struct GaitOptions {
   // (spectral accuracy on the smooth phase integrands).
   int ss_nodes = 32;
   int ds_nodes = 16;
+  // W and C_E integrate |Γ*_j ω_j| and max(0, P) split at their roots, i.e. the interpolant
+  // of those integrands between the nodes: in the SS they are sampled on a grid this many
+  // times finer (nested in the SS grid; 1: the SS grid), which takes them from ~10⁻⁹ to ~10⁻¹⁵
+  // relative on the shipped optima. C_Γ, C_frott and the constraints keep the SS grid.
+  int criteria_refinement = 2;
   // Margins that turn the thesis' strict inequalities into ≤ (gap #4).
   double f_min = 1.0;                 // f(α) ≥ f_min [kg·m²], also the saturation (3.54)
   double alphadot_margin = 0.05;      // ε of (3.56) [rad/s]
