@@ -2,6 +2,7 @@
 //
 //   bench_optimize [--json FILE] [--runs N] [--sweep-runs N] [--fd-runs N] [--no-ipopt]
 //                  [--ipopt-runs N] [--ipopt-only] [--no-configs] [--help]
+//   bench_optimize --random-starts N [--global-per-start K] [--start-config NAME]... [--json FILE]
 //
 // Measurements (configs/default.yaml, read with loadOptimizeConfig; the evaluator is built from
 // the configuration exactly as `gaitopt optimize` builds it):
@@ -27,7 +28,12 @@
 //       unmet level and groups, violation, criterion, time) and its stages.
 //       --start-config NAME (repeatable) restricts (g) to configs/NAME; --no-restarts and
 //       --no-retries and --no-perturbed-restarts switch off the three levers of the start
-//       refinement (start_refinement.hpp).
+//       refinement (start_refinement.hpp). --global-per-start K: each of the N "starts" is
+//       instead run s = 1..N of `gaitopt optimize --global K --seed s` (globalSearchSettings,
+//       the CLI's settings: basin skip on, every start refined, the best polished); its final
+//       is the polished best, its time the run's wall time; the N finals are clustered (0.1 %)
+//       and the line gives optimal runs, clusters, the best (lowest) cluster's share, median
+//       wall time per run and the mean number of starts optimised (K minus the basin skips).
 //   (e) the optimisation of (a) with GradientMode::FiniteDifference (SLSQP): median of
 //       `fd-runs` (default 3); ratio to the exact-gradient median.
 //   (f) exact vs finite-difference gradients on configs/default.yaml, chesse_0.85.yaml and
@@ -146,7 +152,8 @@ void usage(std::ostream& out) {
   out << "usage: bench_optimize [--json FILE] [--runs N] [--sweep-runs N] [--fd-runs N]\n"
          "                      [--no-ipopt] [--ipopt-runs N] [--ipopt-only] [--no-configs]\n"
          "                      [--random-starts N [--start-config NAME]... [--no-restarts]\n"
-         "                       [--no-retries] [--no-perturbed-restarts]]\n"
+         "                       [--no-retries] [--no-perturbed-restarts]\n"
+         "                       [--global-per-start K]]\n"
          "  --json FILE     also write every figure as JSON to FILE\n"
          "  --runs N        timed SLSQP optimisations of configs/default.yaml (default 7, >= 7)\n"
          "  --sweep-runs N  timed 9-speed sweeps (default 3)\n"
@@ -159,7 +166,9 @@ void usage(std::ostream& out) {
          "  --start-config NAME  (g) on configs/NAME only (repeatable)\n"
          "  --no-restarts   (g) without the restarts from an optimum (start_refinement.hpp)\n"
          "  --no-retries    (g) without the perturbed retries of a start not optimal\n"
-         "  --no-perturbed-restarts  (g) without the perturbed restarts near an optimum\n";
+         "  --no-perturbed-restarts  (g) without the perturbed restarts near an optimum\n"
+         "  --global-per-start K  (g) with N runs of `gaitopt optimize --global K --seed s`,\n"
+         "                  s = 1..N, instead of N single starts\n";
 }
 
 void writeRun(JsonWriter& w, const Run& r) {
@@ -356,17 +365,123 @@ void writeStartProtocol(JsonWriter& w, const StartProtocol& p) {
   w.endObject();
 }
 
+// (g) with --global-per-start K: run s = 1..N is `gaitopt optimize --global K --seed s` (the
+// CLI's settings, globalSearchSettings); its final is the polished best, its time the wall time.
+struct GlobalRun {
+  std::uint64_t seed = 0;
+  double wall_s = 0.0;
+  OptimizationResult best;
+  int optimised = 0;  // starts not skipped by the basin test
+};
+
+struct GlobalProtocol {
+  std::string name;
+  int per_run = 0;  // K
+  Criterion criterion = Criterion::Torque;
+  std::vector<GlobalRun> runs;
+  std::vector<OptimumCluster> clusters;  // of the optimal finals; members index `runs`
+  int converged = 0;
+};
+
+GlobalProtocol runGlobalProtocol(const std::string& name, int runs, int per_run) {
+  const OptimizeConfig c = loadOptimizeConfig(std::string(kConfigDir) + name);
+  const GaitEvaluator cev(c.robot, c.options, c.model_options);
+  OptimizationRequest req = optimizationRequest(c, configuredInitialGuess(c, cev.model()));
+  req.solver.print_every = 0;
+  GlobalProtocol p{name, per_run, c.criterion, {}, {}, 0};
+  std::vector<double> finals;
+  std::vector<int> index;
+  for (int s = 1; s <= runs; ++s) {
+    const Clock::time_point t0 = Clock::now();
+    GlobalSearchResult g = globalSearch(cev, req, globalSearchSettings(per_run, s));
+    GlobalRun run{static_cast<std::uint64_t>(s), secondsSince(t0), std::move(g.best),
+                  static_cast<int>(g.starts.size()) - g.skipped};
+    const std::optional<double> v = criterionOf(run.best, p.criterion);
+    std::printf("    run %3d  %-10s  C %s  %.2f s  optimised %d of %d\n", s,
+                run.best.status.c_str(), criterionText(v).c_str(), run.wall_s, run.optimised,
+                per_run);
+    if (run.best.status == "optimal" && v) {
+      finals.push_back(*v);
+      index.push_back(s - 1);
+    }
+    p.runs.push_back(std::move(run));
+  }
+  p.converged = static_cast<int>(finals.size());
+  p.clusters = clusterOptima(finals, GlobalSearchSettings{}.cluster_tolerance);
+  for (OptimumCluster& cl : p.clusters)
+    for (int& m : cl.members) m = index[m];
+  return p;
+}
+
+void printGlobalProtocol(const GlobalProtocol& p) {
+  const int n = static_cast<int>(p.runs.size());
+  std::vector<double> times;
+  double optimised = 0.0;
+  for (const GlobalRun& r : p.runs) {
+    times.push_back(r.wall_s);
+    optimised += r.optimised;
+  }
+  const int best = p.clusters.empty() ? 0 : p.clusters.front().size();
+  std::printf("  %-32s --global %d: optimal %3d/%-3d (%5.1f %%)  clusters %3zu  best cluster %3d "
+              "(%5.1f %%) at %s  median %.3f s/run  mean %.2f starts optimised\n",
+              p.name.c_str(), p.per_run, p.converged, n, 100.0 * p.converged / n,
+              p.clusters.size(), best, 100.0 * best / n,
+              p.clusters.empty() ? "n/a" : criterionText(p.clusters.front().criterion).c_str(),
+              sampleStats(times).median, optimised / n);
+  for (const OptimumCluster& cl : p.clusters)
+    std::printf("    cluster %s: %d runs\n", criterionText(cl.criterion).c_str(), cl.size());
+}
+
+void writeGlobalProtocol(JsonWriter& w, const GlobalProtocol& p) {
+  w.beginObject();
+  w.key("config").value(p.name);
+  w.key("global_per_start").value(p.per_run);
+  w.key("converged").value(p.converged);
+  w.key("runs").beginArray();
+  for (const GlobalRun& r : p.runs) {
+    w.beginObject();
+    w.key("seed").value(static_cast<int>(r.seed));
+    w.key("status").value(r.best.status);
+    w.key("criterion");
+    if (const std::optional<double> c = criterionOf(r.best, p.criterion)) w.value(*c);
+    else w.null();
+    w.key("wall_time_s").value(r.wall_s);
+    w.key("starts_optimised").value(r.optimised);
+    w.endObject();
+  }
+  w.endArray();
+  w.key("clusters").beginArray();
+  for (const OptimumCluster& cl : p.clusters) {
+    w.beginObject();
+    w.key("criterion").value(cl.criterion);
+    w.key("size").value(cl.size());
+    w.endObject();
+  }
+  w.endArray();
+  w.endObject();
+}
+
 // Runs (g) alone; exit status as main's.
-int startProtocolOnly(int starts, const std::vector<std::string>& names,
+int startProtocolOnly(int starts, int global_per_start, const std::vector<std::string>& names,
                       const StartRefinementSettings& refinement, const std::string& json_path,
                       const Environment& env) {
-  std::printf("(g) random-start protocol: %d starts per configuration, seed 1, up to %d "
-              "restarts, %d retries and %d perturbed restarts per start\n",
-              starts, refinement.max_restarts, refinement.max_retries,
-              refinement.max_perturbed_restarts);
+  if (global_per_start > 0)
+    std::printf("(g) --global protocol: %d runs per configuration, run s = `gaitopt optimize "
+                "--global %d --seed s`\n", starts, global_per_start);
+  else
+    std::printf("(g) random-start protocol: %d starts per configuration, seed 1, up to %d "
+                "restarts, %d retries and %d perturbed restarts per start\n",
+                starts, refinement.max_restarts, refinement.max_retries,
+                refinement.max_perturbed_restarts);
   std::vector<StartProtocol> protocols;
+  std::vector<GlobalProtocol> global_protocols;
   try {
     for (const std::string& name : names) {
+      if (global_per_start > 0) {
+        global_protocols.push_back(runGlobalProtocol(name, starts, global_per_start));
+        printGlobalProtocol(global_protocols.back());
+        continue;
+      }
       protocols.push_back(runStartProtocol(name, starts, refinement));
       printStartProtocol(protocols.back());
     }
@@ -382,6 +497,9 @@ int startProtocolOnly(int starts, const std::vector<std::string>& names,
   w.key("random_starts").beginArray();
   for (const StartProtocol& p : protocols) writeStartProtocol(w, p);
   w.endArray();
+  w.key("global_protocol").beginArray();
+  for (const GlobalProtocol& p : global_protocols) writeGlobalProtocol(w, p);
+  w.endArray();
   w.endObject();
   return writeJsonReport("bench_optimize", json_path, w) ? 0 : 1;
 }
@@ -390,7 +508,8 @@ int startProtocolOnly(int starts, const std::vector<std::string>& names,
 
 int main(int argc, char** argv) {
   std::string json_path;
-  int runs = 7, sweep_runs = 3, fd_runs = 3, ipopt_runs = 3, random_starts = 0;
+  int runs = 7, sweep_runs = 3, fd_runs = 3, ipopt_runs = 3, random_starts = 0,
+      global_per_start = 0;
   bool with_ipopt = true, with_configs = true, ipopt_only = false;
   std::vector<std::string> start_configs;
   StartRefinementSettings refinement;
@@ -417,6 +536,9 @@ int main(int argc, char** argv) {
     } else if (arg == "--random-starts" && has_value &&
                parsePositive(argv[i + 1], random_starts)) {
       ++i;
+    } else if (arg == "--global-per-start" && has_value &&
+               parsePositive(argv[i + 1], global_per_start)) {
+      ++i;
     } else if (arg == "--start-config" && has_value) {
       start_configs.push_back(argv[++i]);
     } else if (arg == "--no-restarts") {
@@ -434,12 +556,18 @@ int main(int argc, char** argv) {
     }
   }
 
+  if (global_per_start > 0 && random_starts == 0) {
+    std::cerr << "bench_optimize: --global-per-start needs --random-starts N\n";
+    usage(std::cerr);
+    return 2;
+  }
   if (random_starts > 0) {
     const Environment env;
     printEnvironment("bench_optimize", env);
     if (start_configs.empty())
       start_configs = {"default.yaml", "chesse_0.85.yaml", "chevallereau_aoustin_0.75.yaml"};
-    return startProtocolOnly(random_starts, start_configs, refinement, json_path, env);
+    return startProtocolOnly(random_starts, global_per_start, start_configs, refinement,
+                             json_path, env);
   }
   const std::string default_path = std::string(kConfigDir) + "default.yaml";
   std::optional<OptimizeConfig> config;

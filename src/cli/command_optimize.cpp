@@ -243,10 +243,8 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
     std::vector<Run> runs;
     GlobalSearchResult global_result;
     if (args->global > 0) {
-      GlobalSearchSettings gs;
-      gs.starts = args->global;
-      gs.seed = args->seed;
-      global_result = globalSearch(evaluator, optimizationRequest(config, initial), gs, log);
+      global_result = globalSearch(evaluator, optimizationRequest(config, initial),
+                                   globalSearchSettings(args->global, args->seed), log);
       progress_lines.endLine();
       for (const GlobalStart& st : global_result.starts)
         if (!st.skipped) runs.push_back({st.index, st.result});

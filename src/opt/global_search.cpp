@@ -68,6 +68,13 @@ std::vector<OptimumCluster> clusterOptima(const std::vector<double>& values, dou
   return clusters;
 }
 
+GlobalSearchSettings globalSearchSettings(int starts, std::uint64_t seed) {
+  GlobalSearchSettings s;
+  s.starts = starts;
+  s.seed = seed;
+  return s;
+}
+
 double scaledRmsDistance(const GaitParameters& a, const GaitParameters& b,
                          const Parameterisation& par) {
   const GaitParameters d = (a - b).cwiseQuotient(parameterScales(par));

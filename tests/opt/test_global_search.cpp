@@ -1,6 +1,6 @@
 // Multi-start global search (opt/global_search.hpp): clustering of local optima on synthetic
-// lists, the basin distance, a small --global run on the default problem against the plain
-// optimum, and seeded reproducibility (library and CLI).
+// lists, the basin distance, the settings of --global K --seed S, a small --global run on the
+// default problem against the plain optimum, and seeded reproducibility (library and CLI).
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -76,6 +76,23 @@ TEST_CASE("global: the basin distance is the RMS of the scaled differences", "[o
   CHECK(gaitopt::scaledRmsDistance(a, b, par) == Approx(2.0 / std::sqrt(17.0)).epsilon(1e-12));
   b = a + s;  // one scale on every parameter
   CHECK(gaitopt::scaledRmsDistance(a, b, par) == Approx(1.0).epsilon(1e-12));
+}
+
+TEST_CASE("global: the settings of --global K --seed S are the library's defaults otherwise",
+          "[optimize]") {
+  // bench_optimize --global-per-start measures what users run only if both take these.
+  const gaitopt::GlobalSearchSettings s = gaitopt::globalSearchSettings(5, 7);
+  const gaitopt::GlobalSearchSettings d;
+  CHECK(s.starts == 5);
+  CHECK(s.seed == 7u);
+  CHECK(s.cluster_tolerance == d.cluster_tolerance);
+  CHECK(s.basin_radius == d.basin_radius);
+  CHECK(s.basin_radius > 0.0);  // the basin skip is on, unlike bench_optimize's single starts
+  CHECK(s.refinement.max_restarts == d.refinement.max_restarts);
+  CHECK(s.refinement.max_retries == d.refinement.max_retries);
+  CHECK(s.refinement.max_perturbed_restarts == d.refinement.max_perturbed_restarts);
+  CHECK(s.refinement.perturbation == d.refinement.perturbation);
+  CHECK(s.refinement.optimum_perturbation == d.refinement.optimum_perturbation);
 }
 
 TEST_CASE("global: a small multi-start run on the default problem finds the plain optimum",

@@ -35,6 +35,10 @@ struct GlobalSearchSettings {
   StartRefinementSettings refinement;
 };
 
+// The settings of `gaitopt optimize --global K --seed S` (the library defaults otherwise), shared
+// with bench_optimize's `--global-per-start K` so that the bench measures what users run.
+GlobalSearchSettings globalSearchSettings(int starts, std::uint64_t seed);
+
 struct GlobalStart {
   int index = 0;  // 1-based
   GaitParameters start;
