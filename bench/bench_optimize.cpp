@@ -171,13 +171,30 @@ void usage(std::ostream& out) {
          "                  s = 1..N, instead of N single starts\n";
 }
 
+// A number that may be absent (an undefined criterion): null in the JSON.
+void writeNumberOrNull(JsonWriter& w, const char* key, const std::optional<double>& v) {
+  w.key(key);
+  if (v) w.value(*v);
+  else w.null();
+}
+
+// The clusters of local optima (lowest first): criterion and size.
+void writeClusters(JsonWriter& w, const std::vector<OptimumCluster>& clusters) {
+  w.key("clusters").beginArray();
+  for (const OptimumCluster& cl : clusters) {
+    w.beginObject();
+    w.key("criterion").value(cl.criterion);
+    w.key("size").value(cl.size());
+    w.endObject();
+  }
+  w.endArray();
+}
+
 void writeRun(JsonWriter& w, const Run& r) {
   w.beginObject();
   w.key("wall_time_s").value(r.wall_s);
   w.key("status").value(r.status);
-  w.key("criterion");
-  if (r.criterion) w.value(*r.criterion);
-  else w.null();
+  writeNumberOrNull(w, "criterion", r.criterion);
   w.key("iterations").value(r.iterations);
   w.key("function_evaluations").value(r.function_evaluations);
   w.key("gradient_evaluations").value(r.gradient_evaluations);
@@ -193,9 +210,7 @@ void writeSeries(JsonWriter& w, const Series& s) {
   w.key("max_s").value(s.time.max);
   w.key("deterministic").value(s.deterministic);
   w.key("status").value(s.runs.front().status);
-  w.key("criterion");
-  if (s.runs.front().criterion) w.value(*s.runs.front().criterion);
-  else w.null();
+  writeNumberOrNull(w, "criterion", s.runs.front().criterion);
   w.key("iterations").value(s.runs.front().iterations);
   w.key("function_evaluations").value(s.runs.front().function_evaluations);
   w.key("gradient_evaluations").value(s.runs.front().gradient_evaluations);
@@ -344,9 +359,7 @@ void writeStartProtocol(JsonWriter& w, const StartProtocol& p) {
     w.beginObject();
     w.key("start").value(st.index);
     w.key("status").value(st.result.status);
-    w.key("criterion");
-    if (const std::optional<double> c = criterionOf(st.result, p.criterion)) w.value(*c);
-    else w.null();
+    writeNumberOrNull(w, "criterion", criterionOf(st.result, p.criterion));
     w.key("wall_time_s").value(st.result.wall_time_s);
     w.key("restarts").value(st.restarts);
     w.key("retries").value(st.retries);
@@ -354,14 +367,7 @@ void writeStartProtocol(JsonWriter& w, const StartProtocol& p) {
     w.endObject();
   }
   w.endArray();
-  w.key("clusters").beginArray();
-  for (const OptimumCluster& cl : g.clusters) {
-    w.beginObject();
-    w.key("criterion").value(cl.criterion);
-    w.key("size").value(cl.size());
-    w.endObject();
-  }
-  w.endArray();
+  writeClusters(w, g.clusters);
   w.endObject();
 }
 
@@ -442,22 +448,13 @@ void writeGlobalProtocol(JsonWriter& w, const GlobalProtocol& p) {
     w.beginObject();
     w.key("seed").value(static_cast<int>(r.seed));
     w.key("status").value(r.best.status);
-    w.key("criterion");
-    if (const std::optional<double> c = criterionOf(r.best, p.criterion)) w.value(*c);
-    else w.null();
+    writeNumberOrNull(w, "criterion", criterionOf(r.best, p.criterion));
     w.key("wall_time_s").value(r.wall_s);
     w.key("starts_optimised").value(r.optimised);
     w.endObject();
   }
   w.endArray();
-  w.key("clusters").beginArray();
-  for (const OptimumCluster& cl : p.clusters) {
-    w.beginObject();
-    w.key("criterion").value(cl.criterion);
-    w.key("size").value(cl.size());
-    w.endObject();
-  }
-  w.endArray();
+  writeClusters(w, p.clusters);
   w.endObject();
 }
 
@@ -782,9 +779,7 @@ int main(int argc, char** argv) {
       w.beginObject();
       w.key("speed").value(first_sweep.speeds[k]);
       w.key("status").value(first_sweep.status[k]);
-      w.key("criterion");
-      if (first_sweep.criterion[k]) w.value(*first_sweep.criterion[k]);
-      else w.null();
+      writeNumberOrNull(w, "criterion", first_sweep.criterion[k]);
       w.key("attempts").value(first_sweep.attempts[k]);
       w.endObject();
     }
