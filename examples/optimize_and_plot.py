@@ -25,25 +25,24 @@ out = sys.argv[1] if len(sys.argv) > 1 else os.path.join("results", "example")
 
 # 1. Optimise as `gaitopt optimize --config configs/default.yaml --out OUT` (files written too).
 result = gaitopt.optimize(os.path.join(root, "configs", "default.yaml"), out=out)
-print(f"status {result['solver']['status']}, C_Gamma {result['criteria']['C_Gamma']:.1f} N^2 m s, "
-      f"speed {result['speed']:.3f} m/s, {result['solver']['iterations']} iterations")
+step = result.evaluation
+print(f"status {result.status}, C_Gamma {step.C_Gamma:.1f} N^2 m s, "
+      f"speed {step.speed:.3f} m/s, {result.iterations} iterations")
 
 # 2. The worst constraints, each in its own unit (g <= 0 when satisfied).
-for c in sorted(result["constraints"], key=lambda c: -(c["value"] if c["value"] is not None else -1e9))[:3]:
+for c in sorted(step.constraints, key=lambda c: -(c["value"] if c["value"] is not None else -1e9))[:3]:
     print(f"  {c['name']:22s} level {c['level']}  {c['value']:+.3g} {c['unit']}")
 
 # 3. The model at the first sample, as `gaitopt model` would print it.
-traj = result["trajectory"]
-q = [traj[k][0] for k in ("alpha", "delta1", "delta2", "delta3", "delta4")]
-qd = [traj[k][0] for k in ("alphad", "delta1d", "delta2d", "delta3d", "delta4d")]
+traj = step.trajectory()
 robot = gaitopt.Robot(os.path.join(root, "configs", "robot", "rabbit_miossec.yaml"))
 print(f"angular momentum about the stance foot at SS start: "
-      f"{robot.model(q, qd)['pinned']['angular_momentum_foot1']:.3f} kg m^2/s")
+      f"{robot.model(traj.q[0], traj.qd[0])['pinned']['angular_momentum_foot1']:.3f} kg m^2/s")
 
 # 4. A quick figure of the joint torques from the arrays.
 fig, ax = plt.subplots(figsize=(8, 4))
-for j in range(1, 5):
-    ax.plot(traj["t"], traj[f"gamma{j}"], label=f"joint {j}")
+for j in range(4):
+    ax.plot(traj.t, traj.torques[:, j], label=f"joint {j + 1}")
 ax.set_xlabel("time from single-support start [s]")
 ax.set_ylabel("motor torque Γ* [N·m]")
 ax.set_title("Optimal step at 0.5 m/s: joint torques")

@@ -1,6 +1,6 @@
 // Controller export: CSV round trip, the JSON polynomials against the samples, continuity of
 // the physical motor angles across touchdown and lift-off, the torque split against the
-// evaluator's Γ*, and the CLI.
+// evaluator's Γ*.
 #include <yaml-cpp/yaml.h>
 
 #include <catch2/catch.hpp>
@@ -177,31 +177,6 @@ TEST_CASE("Exported torques add up to the evaluator's Γ* plus the robot file's 
     CHECK((e.tau_inertial + e.tau_gravity + e.tau_contact + e.tau_friction - e.tau).norm() <
           1e-12);
   }
-}
-
-TEST_CASE("gaitopt export CLI: CSV and JSON, bad input", "[export]") {
-  ScratchDir dir("export");
-  const std::string gait = sourcePath("configs/gait/default_step.yaml");
-  const std::string csv = dir.fresh("walk") + ".csv";
-  CliRun run = runCli("export --gait " + quoted(gait) + " --steps 2 --rate 250 --out " +
-                      quoted(csv));
-  INFO(run.err);
-  REQUIRE(run.exit_code == 0);
-  const ExportCsvFile back = readExportCsv(csv);
-  CHECK(back.meta.at("steps") == "2");
-  CHECK(back.meta.at("robot_sha256") ==
-        fileSha256(sourcePath("configs/robot/rabbit_miossec.yaml")));
-  CHECK(back.rows.back().step == 1);
-  const std::string json = dir.fresh("walk") + ".json";
-  run = runCli("export --gait " + quoted(gait) + " --format json --rate 250 --out " +
-               quoted(json));
-  REQUIRE(run.exit_code == 0);
-  CHECK(YAML::LoadFile(json)["format"].as<std::string>() == "gaitopt controller export 1");
-  const std::string bad = dir.fresh("bad") + ".csv";
-  run = runCli("export --gait " + quoted(gait) + " --steps 0 --out " + quoted(bad));
-  CHECK(run.exit_code == 2);
-  CHECK_THAT(run.err, Catch::Matchers::Contains("--steps"));
-  CHECK_FALSE(std::filesystem::exists(bad));
 }
 
 }  // namespace gaitopt::test

@@ -1,24 +1,22 @@
-// Gait files (loadGaitFile, parseGaitOptions, gaitYaml), summary.json and `gaitopt evaluate`:
-// the shipped example, exact round trips, ConfigError (file, dotted key, line) for each kind of
-// bad input, and the command's outputs and exit codes.
+// Gait files (loadGaitFile, parseGaitOptions, gaitYaml) and summary.json: the shipped example,
+// exact round trips, ConfigError (file, dotted key, line) for each kind of bad input, and the
+// summary's constraint groups.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <map>
 #include <string>
 #include <vector>
 
 #include "gaitopt/io/config_error.hpp"
 #include "gaitopt/gait/evaluator.hpp"
 #include "gaitopt/gait/summary.hpp"
-#include "gaitopt/gait/trajectory.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/io/yaml_reader.hpp"
 #include "test_files.hpp"
+#include "test_gait_document.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -29,10 +27,8 @@ using gaitopt::GaitOptions;
 using gaitopt::GaitParameters;
 using gaitopt::loadGaitFile;
 using gaitopt::ModelOptions;
-using gaitopt::test::CliRun;
-using gaitopt::test::quoted;
+using gaitopt::test::gaitWith;
 using gaitopt::test::readFile;
-using gaitopt::test::runCli;
 using gaitopt::test::sourcePath;
 
 namespace {
@@ -50,42 +46,6 @@ gaitopt::test::ScratchDir& scratch() {
 const double kExampleValues[gaitopt::kNumGaitParameters] = {
     -0.044819, -2.593492, 1.520796, 0.35, -0.190837, -2.495513, 1.520796, -2.445513, 1.520796,
     0.0,       0.06,      -0.9,     0.3,  0.3,       0.3,       0.3,       0.12};
-
-// A valid gait document; the numbers on the right are the 1-based line numbers that the
-// error tests below assert. Line 2 is filled in with the absolute path of the default robot.
-std::vector<std::string> validGait() {
-  return {
-      "# written by test_gait_io.cpp",  // 1
-      "robot: " + kRobot,               // 2
-      "parameters:",                    // 3
-      "  alpha_iDS: -0.044819",         // 4
-      "  delta1_iDS: -2.593492",        // 5
-      "  theta3_iDS: 1.520796",         // 6
-      "  d: 0.35",                      // 7
-      "  alpha_fDS: -0.190837",         // 8
-      "  delta1_fDS: -2.495513",        // 9
-      "  theta3_fDS: 1.520796",         // 10
-      "  delta1_int: -2.445513",        // 11
-      "  theta3_int: 1.520796",         // 12
-      "  x2r_int: 0.0",                 // 13
-      "  z2_int: 0.06",                 // 14
-      "  alphadot_iSS: -0.9",           // 15
-      "  delta1s_iSS: 0.3",             // 16
-      "  delta2s_iSS: 0.3",             // 17
-      "  delta1s_fSS: 0.3",             // 18
-      "  delta2s_fSS: 0.3",             // 19
-      "  T_DS: 0.12",                   // 20
-      "options:",                       // 21
-      "  sample_rate: 1000",            // 22
-      "  ds_distribution: torque",      // 23
-      "  ss_nodes: 32",                 // 24
-  };
-}
-
-// The valid gait with some lines (1-based) replaced; "#" blanks a line without shifting others.
-std::string gaitWith(const std::map<int, std::string>& replaced = {}) {
-  return gaitopt::test::withLines(validGait(), replaced);
-}
 
 // Loading `yaml` must throw a ConfigError for `key` at `line`, with the standard message.
 void requireError(const std::string& yaml, const std::string& key, int line,
@@ -328,86 +288,6 @@ TEST_CASE("bad gait files name the file, the key and its line", "[gait_io]") {
       CHECK(e.key() == "lengths");
     }
   }
-}
-
-TEST_CASE("gaitopt evaluate writes summary.json and trajectory.csv", "[gait_io]") {
-  const std::string out = scratch().fresh("out_ok") + "/nested";
-  const CliRun run = runCli("evaluate --gait " + quoted(kExample) + " --out " + quoted(out));
-  INFO(run.err);
-  REQUIRE(run.exit_code == 0);
-  CHECK_THAT(run.out, Contains("ok") && Contains("C_Gamma") && Contains("max violation"));
-  CHECK(std::count(run.out.begin(), run.out.end(), '\n') == 1);
-
-  const std::string summary = readFile(out + "/summary.json");
-  CHECK_THAT(summary, Contains("\"status\": \"ok\""));
-  // The shipped step (main's optimum before the between-node verdict, on which the simulation
-  // tests are tuned) holds at the grid nodes but its clearance dips below the bound between
-  // them: the one verdict says so.
-  CHECK_THAT(summary, Contains("\"feasible\": false"));
-  CHECK_THAT(summary, Contains("\"failed_level\": 5"));
-  CHECK_THAT(summary, Contains("\"unmet_constraints\": [\"clearance\"]"));
-  CHECK_THAT(summary, Contains("\"worst_constraint\": \"clearance\""));
-  CHECK_THAT(summary, Contains("\"C_Gamma\": "));
-  CHECK_THAT(summary, Contains("\"name\": \"torque_envelope_ss\""));
-  CHECK_THAT(summary, Contains("\"max_violation\": "));
-
-  const std::string csv = readFile(out + "/trajectory.csv");
-  const std::string header = gaitopt::trajectoryCsv({});
-  REQUIRE(csv.compare(0, header.size(), header) == 0);
-  const auto rows = std::count(csv.begin(), csv.end(), '\n') - 1;
-  CHECK(rows >= 100);
-  CHECK(csv.find("nan") == std::string::npos);
-
-  // --sample-rate overrides options.sample_rate: fewer rows at 100 Hz than at 1000 Hz.
-  const std::string out2 = scratch().fresh("out_rate");
-  const CliRun slow = runCli("evaluate --gait " + quoted(kExample) + " --out " + quoted(out2) +
-                             " --sample-rate 100");
-  REQUIRE(slow.exit_code == 0);
-  const std::string csv2 = readFile(out2 + "/trajectory.csv");
-  const auto rows2 = std::count(csv2.begin(), csv2.end(), '\n') - 1;
-  CHECK(rows2 < rows / 5);
-  CHECK(rows2 >= 10);
-}
-
-TEST_CASE("gaitopt evaluate rejects bad input without writing anything", "[gait_io]") {
-  const std::string gait = scratch().write(gaitWith({{24, "  ss_nodes: 32.5"}}));
-  const std::string out = scratch().fresh("out_bad");
-  const CliRun run = runCli("evaluate --gait " + quoted(gait) + " --out " + quoted(out));
-  CHECK(run.exit_code == 2);
-  CHECK_THAT(run.err, Contains(gait + ":24: key 'options.ss_nodes': "));
-  CHECK_FALSE(fs::exists(out));
-
-  const CliRun rate = runCli("evaluate --gait " + quoted(kExample) + " --out " + quoted(out) +
-                             " --sample-rate -5");
-  CHECK(rate.exit_code == 2);
-  CHECK_FALSE(fs::exists(out));
-
-  const CliRun missing = runCli("evaluate --gait " + quoted(out + ".yaml") + " --out " +
-                                quoted(out));
-  CHECK(missing.exit_code == 2);
-  CHECK_FALSE(fs::exists(out));
-}
-
-TEST_CASE("gaitopt evaluate reports an undefined step with exit code 3", "[gait_io]") {
-  // d = 2 m: the rear leg cannot reach the ground, level 0 fails.
-  const std::string gait = scratch().write(gaitWith({{7, "  d: 2.0"}}));
-  const std::string out = scratch().fresh("out_undefined");
-  fs::create_directories(out);
-  std::ofstream(out + "/trajectory.csv") << "stale\n";  // from an earlier run
-  const CliRun run = runCli("evaluate --gait " + quoted(gait) + " --out " + quoted(out));
-  INFO(run.err);
-  CHECK(run.exit_code == 3);
-  CHECK_THAT(run.out, Contains("undefined"));
-  const std::string summary = readFile(out + "/summary.json");
-  CHECK_THAT(summary, Contains("\"status\": \"undefined\""));
-  CHECK_THAT(summary, Contains("\"failed_level\": 0"));
-  CHECK_THAT(summary, Contains("\"criteria\": null"));
-  CHECK_THAT(summary, Contains("\"T_SS\": null"));
-  std::string lower = summary;
-  std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
-  CHECK(lower.find("nan") == std::string::npos);
-  CHECK(lower.find("inf") == std::string::npos);
-  CHECK_FALSE(fs::exists(out + "/trajectory.csv"));
 }
 
 TEST_CASE("summary constraint groups: worst Defined value, counts and max_violation", "[gait_io]") {

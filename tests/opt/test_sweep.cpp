@@ -1,50 +1,28 @@
 // Speed sweeps: the --speeds and --shard syntax, contiguous chunks, continuation on the default
-// robot (one chain, two threaded chains, shards), sweep.csv merging, and the `gaitopt sweep` /
-// `gaitopt sweep-merge` commands. Three speeds only, to keep the runtime small.
+// robot (one chain, two threaded chains, shards), sweep.csv merging. Three speeds only, to keep
+// the runtime small.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "gaitopt/opt/initial_guess.hpp"
 #include "gaitopt/opt/sweep.hpp"
-#include "test_files.hpp"
 #include "test_gait_support.hpp"
+#include "test_sweep_csv.hpp"
 
-namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 using gaitopt::OptimizationRequest;
 using gaitopt::parseShard;
 using gaitopt::parseSpeedRange;
 using gaitopt::SweepPoint;
 using gaitopt::SweepSettings;
-using gaitopt::test::CliRun;
-using gaitopt::test::quoted;
-using gaitopt::test::readFile;
-using gaitopt::test::runCli;
+using gaitopt::test::firstField;
+using gaitopt::test::lines;
 
 namespace {
-
-gaitopt::test::ScratchDir& scratch() {
-  static gaitopt::test::ScratchDir s("sweep");
-  return s;
-}
-
-std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line))
-    if (!line.empty()) out.push_back(line);
-  return out;
-}
-
-// The speed column of a sweep.csv row.
-double firstField(const std::string& row) { return std::stod(row.substr(0, row.find(','))); }
 
 const gaitopt::GaitEvaluator& evaluator() {
   static const gaitopt::GaitEvaluator ev = gaitopt::test::defaultGaitEvaluator();
@@ -63,8 +41,6 @@ bool sameBits(const gaitopt::GaitParameters& a, const gaitopt::GaitParameters& b
     if (std::memcmp(&a[i], &b[i], sizeof(double)) != 0) return false;
   return true;
 }
-
-const std::string kConfig = gaitopt::test::sourcePath("configs/default.yaml");
 
 }  // namespace
 
@@ -225,79 +201,4 @@ TEST_CASE("mergeSweepCsvs sorts rows and rejects duplicates and foreign headers"
   CHECK(gaitopt::sweepFolderName(0.5, 3) == "v0.500");
   CHECK(gaitopt::sweepFolderDecimals({0.4, 0.5}) == 3);
   CHECK(gaitopt::sweepFolderDecimals({0.5, 0.5001}) == 4);
-}
-
-TEST_CASE("gaitopt sweep and sweep-merge: outputs, shards, exit codes", "[sweep]") {
-  REQUIRE(fs::exists(kConfig));
-  const std::string cfg = quoted(kConfig);
-
-  SECTION("one run writes sweep.csv and one folder per speed") {
-    const std::string out = scratch().fresh("sweep");
-    const CliRun r =
-        runCli("sweep --config " + cfg + " --speeds 0.4:0.6:0.1 --out " + quoted(out));
-    INFO(r.out << r.err);
-    CHECK(r.exit_code == 0);
-    CHECK_THAT(r.out, Contains("[3/3] v="));
-    const std::vector<std::string> csv = lines(readFile(out + "/sweep.csv"));
-    REQUIRE(csv.size() == 4);
-    CHECK(csv[0] ==
-          "speed,status,C_Gamma,C_E,W,C_frott,step_length,T_SS,T_DS,iterations,wall_time_s");
-    for (std::size_t i = 1; i < csv.size(); ++i) CHECK_THAT(csv[i], Contains(",optimal,"));
-    for (const char* v : {"v0.400", "v0.500", "v0.600"})
-      for (const char* f : {"summary.json", "gait.yaml", "trajectory.csv"}) {
-        INFO(v << "/" << f);
-        CHECK(fs::exists(fs::path(out) / v / f));
-      }
-  }
-
-  SECTION("two shards merge into the full list") {
-    const std::string a = scratch().fresh("shard0"), b = scratch().fresh("shard1");
-    const std::string merged = scratch().fresh("merged");
-    const CliRun r0 = runCli("sweep --config " + cfg +
-                             " --speeds 0.4:0.6:0.1 --shard 0/2 --quiet --out " + quoted(a));
-    const CliRun r1 = runCli("sweep --config " + cfg +
-                             " --speeds 0.4:0.6:0.1 --shard 1/2 --quiet --out " + quoted(b));
-    INFO(r0.out << r0.err << r1.out << r1.err);
-    CHECK(r0.exit_code == 0);
-    CHECK(r1.exit_code == 0);
-    CHECK(lines(readFile(a + "/sweep.csv")).size() == 2);
-    CHECK(lines(readFile(b + "/sweep.csv")).size() == 3);
-    const CliRun m =
-        runCli("sweep-merge --out " + quoted(merged) + " " + quoted(b) + " " + quoted(a));
-    INFO(m.out << m.err);
-    CHECK(m.exit_code == 0);
-    const std::vector<std::string> csv = lines(readFile(merged + "/sweep.csv"));
-    REQUIRE(csv.size() == 4);
-    CHECK(csv[0] == gaitopt::kSweepCsvHeader);
-    CHECK(firstField(csv[1]) == 0.4);
-    CHECK(firstField(csv[2]) == 0.5);
-    CHECK(firstField(csv[3]) == 0.6);
-
-    const std::string dup = scratch().fresh("dup");
-    const CliRun d =
-        runCli("sweep-merge --out " + quoted(dup) + " " + quoted(a) + " " + quoted(a));
-    CHECK(d.exit_code == 2);
-    CHECK_THAT(d.err, Contains("appears twice"));
-    CHECK_FALSE(fs::exists(dup));
-  }
-
-  SECTION("bad input exits 2 and writes nothing") {
-    for (const std::string bad :
-         {"--speeds 0.6:0.4:0.1", "--speeds 0.4:0.6", "--speeds a:b:c",
-          "--speeds 0.4:0.6:0.1 --shard 3/2", "--speeds 0.4:0.6:0.1 --shard 0/4",
-          "--speeds 0.4:0.6:0.1 --jobs 0"}) {
-      const std::string out = scratch().fresh("bad");
-      const CliRun r = runCli("sweep --config " + cfg + " " + bad + " --out " + quoted(out));
-      INFO(bad << ": " << r.err);
-      CHECK(r.exit_code == 2);
-      CHECK_FALSE(r.err.empty());
-      CHECK_FALSE(fs::exists(out));
-    }
-    const std::string out = scratch().fresh("bad_config");
-    const CliRun r =
-        runCli("sweep --config " + quoted(out + ".yaml") + " --speeds 0.4:0.6:0.1 --out " +
-               quoted(out));
-    CHECK(r.exit_code == 2);
-    CHECK_FALSE(fs::exists(out));
-  }
 }
