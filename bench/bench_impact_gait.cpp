@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
                                  std::max(3, opts.repeats / 10), [&]() {
                                    const OptimizationResult r = optimizeGait(opt_ev, request);
                                    best = r.evaluation.C_Gamma;
-                                   status = r.status;
+                                   status = optimizationStatusName(r.status);
                                    return best;
                                  });
   std::printf("%-34s %12s %12s %12s\n", "measurement", "median", "min", "p90");

@@ -60,7 +60,8 @@
 #include "gaitopt/opt/optimizer.hpp"
 #include "gaitopt/io/json_writer.hpp"
 #include "gaitopt/io/optimize_config.hpp"
-#include "gaitopt/opt/sweep.hpp"
+#include "gaitopt/io/sweep_file.hpp"
+#include "gaitopt/opt/result_order.hpp"
 
 namespace {
 
@@ -76,11 +77,6 @@ double secondsSince(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// The criterion of a run, when its step is defined and its motion computed.
-std::optional<double> criterionOf(const OptimizationResult& r, Criterion c) {
-  if (!r.evaluation.motion_computed || !r.evaluation.defined()) return std::nullopt;
-  return criterionValue(r.evaluation, c);
-}
 
 // One optimisation: its external wall time and the solver's figures.
 struct Run {
@@ -95,8 +91,8 @@ Run runOnce(const GaitEvaluator& ev, const OptimizationRequest& req, Criterion c
   const OptimizationResult r = optimizeGait(ev, req);
   Run run;
   run.wall_s = secondsSince(t0);
-  run.status = r.status;
-  run.criterion = criterionOf(r, c);
+  run.status = optimizationStatusName(r.status);
+  run.criterion = resultCriterion(r, c);
   run.iterations = r.iterations;
   run.function_evaluations = r.function_evaluations;
   run.gradient_evaluations = r.gradient_evaluations;
@@ -326,8 +322,8 @@ void printStartTable(const StartProtocol& p) {
     for (const std::string& u : r.unmet_constraints) unmet += (unmet.empty() ? "" : ",") + u;
     std::printf("    start %3d  %-10s level %2d %-28s viol %9.2e  C %s  %.2f s  restarts %d "
                 "retries %d perturbed %d\n",
-                st.index, r.status.c_str(), r.unmet_level, unmet.c_str(), r.constraint_violation,
-                criterionText(criterionOf(r, p.criterion)).c_str(), r.wall_time_s, st.restarts,
+                st.index, optimizationStatusName(r.status), r.unmet_level, unmet.c_str(), r.constraint_violation,
+                criterionText(resultCriterion(r, p.criterion)).c_str(), r.wall_time_s, st.restarts,
                 st.retries, st.perturbed_restarts);
     for (const StageReport& sr : r.stages)
       std::printf("        %-44s %-10s %4d it\n", sr.name.c_str(), nlpStatusName(sr.status),
@@ -343,7 +339,7 @@ void printStartProtocol(const StartProtocol& p) {
               p.name.c_str(), g.converged, p.starts, 100.0 * g.converged / p.starts,
               g.clusters.size(), p.largest(), 100.0 * p.largest() / p.starts,
               g.median_time_per_start_s,
-              criterionText(criterionOf(g.best, p.criterion)).c_str());
+              criterionText(resultCriterion(g.best, p.criterion)).c_str());
 }
 
 void writeStartProtocol(JsonWriter& w, const StartProtocol& p) {
@@ -358,8 +354,8 @@ void writeStartProtocol(JsonWriter& w, const StartProtocol& p) {
   for (const GlobalStart& st : g.starts) {
     w.beginObject();
     w.key("start").value(st.index);
-    w.key("status").value(st.result.status);
-    writeNumberOrNull(w, "criterion", criterionOf(st.result, p.criterion));
+    w.key("status").value(optimizationStatusName(st.result.status));
+    writeNumberOrNull(w, "criterion", resultCriterion(st.result, p.criterion));
     w.key("wall_time_s").value(st.result.wall_time_s);
     w.key("restarts").value(st.restarts);
     w.key("retries").value(st.retries);
@@ -402,11 +398,11 @@ GlobalProtocol runGlobalProtocol(const std::string& name, int runs, int per_run)
     GlobalSearchResult g = globalSearch(cev, req, globalSearchSettings(per_run, s));
     GlobalRun run{static_cast<std::uint64_t>(s), secondsSince(t0), std::move(g.best),
                   static_cast<int>(g.starts.size()) - g.skipped};
-    const std::optional<double> v = criterionOf(run.best, p.criterion);
+    const std::optional<double> v = resultCriterion(run.best, p.criterion);
     std::printf("    run %3d  %-10s  C %s  %.2f s  optimised %d of %d\n", s,
-                run.best.status.c_str(), criterionText(v).c_str(), run.wall_s, run.optimised,
+                optimizationStatusName(run.best.status), criterionText(v).c_str(), run.wall_s, run.optimised,
                 per_run);
-    if (run.best.status == "optimal" && v) {
+    if (isOptimal(run.best) && v) {
       finals.push_back(*v);
       index.push_back(s - 1);
     }
@@ -447,8 +443,8 @@ void writeGlobalProtocol(JsonWriter& w, const GlobalProtocol& p) {
   for (const GlobalRun& r : p.runs) {
     w.beginObject();
     w.key("seed").value(static_cast<int>(r.seed));
-    w.key("status").value(r.best.status);
-    writeNumberOrNull(w, "criterion", criterionOf(r.best, p.criterion));
+    w.key("status").value(optimizationStatusName(r.best.status));
+    writeNumberOrNull(w, "criterion", resultCriterion(r.best, p.criterion));
     w.key("wall_time_s").value(r.wall_s);
     w.key("starts_optimised").value(r.optimised);
     w.endObject();
@@ -664,10 +660,10 @@ int main(int argc, char** argv) {
     s.wall_s = secondsSince(t0);
     for (const SweepPoint& p : points) {
       s.speeds.push_back(p.speed);
-      s.status.push_back(p.result.status);
-      s.criterion.push_back(criterionOf(p.result, criterion));
+      s.status.push_back(optimizationStatusName(p.result.status));
+      s.criterion.push_back(resultCriterion(p.result, criterion));
       s.attempts.push_back(p.attempts);
-      if (p.result.status == "optimal") ++s.optimal;
+      if (isOptimal(p.result)) ++s.optimal;
     }
     if (!sweeps.empty() &&
         (s.status != sweeps.front().status || s.criterion != sweeps.front().criterion))

@@ -1,11 +1,11 @@
-// sweep.csv shards as merged by `gaitopt sweep-merge` (opt/sweep.hpp): the input is split at
+// sweep.csv shards as merged by `gaitopt sweep-merge` (io/sweep_file.hpp): the input is split at
 // its first NUL byte into two shards; only std::invalid_argument may come out.
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "fuzz_support.hpp"
-#include "gaitopt/opt/sweep.hpp"
+#include "gaitopt/io/sweep_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string input(reinterpret_cast<const char*>(data), size);

@@ -17,10 +17,12 @@
 
 #include "gaitopt/export/controller_export.hpp"
 #include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/gait/constraint_summary.hpp"
 #include "gaitopt/gait/feasibility.hpp"
-#include "gaitopt/gait/summary.hpp"
+#include "gaitopt/io/summary_file.hpp"
 #include "gaitopt/gait/trajectory.hpp"
 #include "gaitopt/ident/diagnose.hpp"
+#include "gaitopt/io/diagnosis_file.hpp"
 #include "gaitopt/impact/impact_solver.hpp"
 #include "gaitopt/io/atomic_file.hpp"
 #include "gaitopt/io/config_error.hpp"
@@ -559,7 +561,10 @@ void bindGait(py::module_& m) {
 void bindOptimization(py::module_& m) {
   py::class_<Optimization>(m, "OptimizationResult", "The library's optimisation result")
       .def_property_readonly("parameters", [](const Optimization& o) { return vectorArray(o.result.parameters); })
-      .def_property_readonly("status", [](const Optimization& o) { return o.result.status; })
+      .def_property_readonly("status",
+                             [](const Optimization& o) {
+                               return std::string(optimizationStatusName(o.result.status));
+                             })
       .def_property_readonly("iterations", [](const Optimization& o) { return o.result.iterations; })
       .def_property_readonly("function_evaluations",
                              [](const Optimization& o) { return o.result.function_evaluations; })

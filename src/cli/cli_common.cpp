@@ -10,8 +10,9 @@
 #include <system_error>
 #include <unistd.h>
 
-#include "gaitopt/gait/summary.hpp"
+#include "gaitopt/io/summary_file.hpp"
 #include "gaitopt/opt/gait_problem.hpp"
+#include "gaitopt/opt/result_order.hpp"
 
 namespace gaitopt::cli {
 
@@ -66,8 +67,7 @@ std::function<bool(const std::string&)> ourOutputs(const SolverSettings* solver)
 }
 
 std::optional<double> criterionOf(const OptimizationResult& r, Criterion c) {
-  if (!r.evaluation.motion_computed || !r.evaluation.defined()) return std::nullopt;
-  return criterionValue(r.evaluation, c);
+  return resultCriterion(r, c);
 }
 
 std::string criterionText(const OptimizationResult& r, Criterion c, const char* format) {

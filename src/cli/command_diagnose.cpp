@@ -11,6 +11,8 @@
 #include "commands.hpp"
 #include "gaitopt/ident/diagnose.hpp"
 #include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/diagnosis_file.hpp"
+#include "gaitopt/io/measured_data.hpp"
 #include "gaitopt/io/robot_file.hpp"
 
 namespace gaitopt::cli {

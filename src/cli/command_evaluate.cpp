@@ -10,7 +10,9 @@
 #include "gaitopt/io/atomic_file.hpp"
 #include "gaitopt/gait/evaluator.hpp"
 #include "gaitopt/gait/feasibility.hpp"
-#include "gaitopt/gait/summary.hpp"
+#include "gaitopt/gait/constraint_summary.hpp"
+#include "gaitopt/io/summary_file.hpp"
+#include "gaitopt/io/trajectory_file.hpp"
 #include "gaitopt/gait/trajectory.hpp"
 #include "gaitopt/io/gait_file.hpp"
 

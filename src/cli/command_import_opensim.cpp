@@ -7,10 +7,10 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "gaitopt/ident/opensim_analysis.hpp"
-#include "gaitopt/ident/opensim_import.hpp"
 #include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/opensim_analysis_file.hpp"
 #include "gaitopt/io/opensim_table.hpp"
+#include "gaitopt/io/opensim_trial_file.hpp"
 #include "gaitopt/io/robot_file.hpp"
 
 namespace gaitopt::cli {
@@ -96,7 +96,9 @@ void registerImportOpenSimCommand(CLI::App& app, int& exit_code) {
     std::optional<OpenSimTable> id;
     if (!args->id.empty()) id = readOpenSimTable(args->id);
     std::optional<OpenSimAnalysis> analysis;
-    if (!args->report.empty()) analysis = analyseImportedTrial(trial, buildModel(robot), id ? &*id : nullptr);
+    if (!args->report.empty())
+      analysis = withDataErrorsAsConfigErrors(
+          [&] { return analyseImportedTrial(trial, buildModel(robot), id ? &*id : nullptr); });
     printSummary(trial);
     writeFileAtomically(args->out, importedTrialCsv(trial));
     if (analysis) {

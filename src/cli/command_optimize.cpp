@@ -5,22 +5,20 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
-#include <optional>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "gaitopt/gait/constraint_summary.hpp"
 #include "gaitopt/gait/evaluator.hpp"
 #include "gaitopt/io/atomic_file.hpp"
-#include "gaitopt/opt/global_search.hpp"
-#include "gaitopt/opt/optimizer.hpp"
-#include "gaitopt/gait/summary.hpp"
 #include "gaitopt/io/optimize_config.hpp"
 #include "gaitopt/io/optimize_output.hpp"
-#include "gaitopt/opt/random_start.hpp"
+#include "gaitopt/opt/global_search.hpp"
+#include "gaitopt/opt/optimizer.hpp"
+#include "gaitopt/opt/start_runs.hpp"
 
 namespace gaitopt::cli {
 namespace {
@@ -38,117 +36,6 @@ struct OptimizeArgs {
   std::string progress = "auto";
 };
 
-struct Run {
-  int start = 0;  // 1-based index of the random start; 0 for the configured initial guess
-  OptimizationResult result;
-};
-
-bool isOptimal(const OptimizationResult& r) { return r.status == "optimal"; }
-
-// How far a run got: every level met (6) above an unmet level 5, 4, ..., 0.
-int progress(const OptimizationResult& r) { return r.unmet_level < 0 ? 6 : r.unmet_level; }
-
-// Whether run a is better than run b: an optimal run with the lower criterion beats any other;
-// among non-optimal runs, the one that got higher in the hierarchy, then the smaller
-// violation. Ties keep the earlier run.
-bool better(const OptimizationResult& a, const OptimizationResult& b, Criterion c) {
-  if (isOptimal(a) != isOptimal(b)) return isOptimal(a);
-  if (isOptimal(a)) return *criterionOf(a, c) < *criterionOf(b, c);
-  if (progress(a) != progress(b)) return progress(a) > progress(b);
-  return a.constraint_violation < b.constraint_violation;
-}
-
-void numberOrNull(JsonWriter& w, const std::optional<double>& v) {
-  if (v) {
-    w.value(*v);
-  } else {
-    w.null();
-  }
-}
-
-struct StartsSummary {
-  int converged = 0;
-  std::optional<double> min, max;
-};
-
-StartsSummary summarizeStarts(const std::vector<Run>& runs, Criterion c) {
-  StartsSummary s;
-  for (const Run& run : runs) {
-    if (!isOptimal(run.result)) continue;
-    ++s.converged;
-    const double v = *criterionOf(run.result, c);
-    s.min = s.min ? std::min(*s.min, v) : v;
-    s.max = s.max ? std::max(*s.max, v) : v;
-  }
-  return s;
-}
-
-void writeRuns(JsonWriter& w, const std::vector<Run>& runs, Criterion c) {
-  w.key("runs").beginArray();
-  for (const Run& run : runs) {
-    w.beginObject();
-    w.key("start").value(run.start);
-    w.key("status").value(run.result.status);
-    w.key("criterion");
-    numberOrNull(w, criterionOf(run.result, c));
-    w.key("iterations").value(run.result.iterations);
-    w.key("wall_time_s").value(run.result.wall_time_s);
-    w.key("unmet_level");
-    if (run.result.unmet_level < 0) {
-      w.null();
-    } else {
-      w.value(run.result.unmet_level);
-    }
-    w.endObject();
-  }
-  w.endArray();
-}
-
-void writeRandomStarts(JsonWriter& w, const std::vector<Run>& runs, std::uint64_t seed,
-                       int best_start, Criterion c) {
-  const StartsSummary s = summarizeStarts(runs, c);
-  w.key("random_starts").beginObject();
-  w.key("count").value(static_cast<int>(runs.size()));
-  w.key("seed").value(static_cast<double>(seed));
-  w.key("converged").value(s.converged);
-  w.key("criterion_min");
-  numberOrNull(w, s.min);
-  w.key("criterion_max");
-  numberOrNull(w, s.max);
-  w.key("spread");
-  numberOrNull(w, s.min ? std::optional<double>(*s.max - *s.min) : std::nullopt);
-  w.key("best_start").value(best_start);
-  writeRuns(w, runs, c);
-  w.endObject();
-}
-
-// `global` in summary.json: the clusters of local optima (criterion, size, starts), the median
-// time per optimised start and every optimised run.
-void writeGlobal(JsonWriter& w, const GlobalSearchResult& g, const std::vector<Run>& runs,
-                 std::uint64_t seed, Criterion c) {
-  w.key("global").beginObject();
-  w.key("count").value(static_cast<int>(g.starts.size()));
-  w.key("seed").value(static_cast<double>(seed));
-  w.key("optimised").value(static_cast<int>(runs.size()));
-  w.key("skipped").value(g.skipped);
-  w.key("converged").value(g.converged);
-  w.key("median_time_per_start_s").value(g.median_time_per_start_s);
-  w.key("best_start").value(g.best_start);
-  w.key("clusters").beginArray();
-  for (const OptimumCluster& cl : g.clusters) {
-    w.beginObject();
-    w.key("criterion").value(cl.criterion);
-    w.key("size").value(cl.size());
-    w.key("starts").beginArray();
-    for (int m : cl.members) w.value(m);
-    w.endArray();
-    w.endObject();
-  }
-  w.endArray();
-  writeRuns(w, runs, c);
-  w.endObject();
-}
-
 void printClusters(std::ostream& out, const GlobalSearchResult& g, Criterion c) {
   out << "global: " << g.converged << " of " << g.starts.size() - g.skipped
       << " optimised starts optimal (" << g.skipped << " skipped in known basins), "
@@ -159,18 +46,18 @@ void printClusters(std::ostream& out, const GlobalSearchResult& g, Criterion c) 
         << cl.size() << " start(s)\n";
 }
 
-void printStartsTable(std::ostream& out, const std::vector<Run>& runs, Criterion c) {
+void printStartsTable(std::ostream& out, const std::vector<StartRun>& runs, Criterion c) {
   char line[128];
   std::snprintf(line, sizeof line, "%6s  %-10s  %14s  %10s  %9s  %s\n", "start", "status",
                 criterionName(c), "iterations", "wall [s]", "unmet");
   out << line;
-  for (const Run& run : runs) {
+  for (const StartRun& run : runs) {
     std::string unmet = run.result.unmet_level < 0 ? "-" : std::to_string(run.result.unmet_level);
     for (std::size_t i = 0; i < run.result.unmet_constraints.size(); ++i) {
       unmet += (i == 0 ? ": " : ", ") + run.result.unmet_constraints[i];
     }
     std::snprintf(line, sizeof line, "%6d  %-10s  %14s  %10d  %9.3f  ", run.start,
-                  run.result.status.c_str(), criterionText(run.result, c).c_str(),
+                  optimizationStatusName(run.result.status), criterionText(run.result, c).c_str(),
                   run.result.iterations, run.result.wall_time_s);
     out << line << unmet << "\n";
   }
@@ -240,38 +127,33 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
     if (!args->verbose) config.solver.print_every = 0;
     const auto start_time = std::chrono::steady_clock::now();
 
-    std::vector<Run> runs;
+    std::vector<StartRun> runs;
     GlobalSearchResult global_result;
+    const OptimizationRequest request = optimizationRequest(config, initial);
     if (args->global > 0) {
-      global_result = globalSearch(evaluator, optimizationRequest(config, initial),
+      global_result = globalSearch(evaluator, request,
                                    globalSearchSettings(args->global, args->seed), log);
       progress_lines.endLine();
       for (const GlobalStart& st : global_result.starts)
         if (!st.skipped) runs.push_back({st.index, st.result});
     } else if (args->random_starts == 0) {
-      runs.push_back({0, optimizeGait(evaluator, optimizationRequest(config, initial), log)});
+      runs.push_back({0, optimizeGait(evaluator, request, log)});
       progress_lines.endLine();
     } else {
-      std::mt19937_64 rng(args->seed);
-      for (int k = 1; k <= args->random_starts; ++k) {
-        const GaitParameters start = randomStart(initial, rng, config.options.parameterisation);
-        if (log) *log << "--- random start " << k << "/" << args->random_starts << "\n";
-        runs.push_back({k, optimizeGait(evaluator, optimizationRequest(config, start), log)});
-        progress_lines.endLine();
-        if (log) {
-          const double elapsed =
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
-          *log << "--- random start " << k << "/" << args->random_starts << ": "
-               << runs.back().result.status << ", "
-               << progressText(evaluator, runs.back().result.evaluation, criterion) << ", "
-               << elapsedAndRemaining(elapsed, k, args->random_starts) << "\n";
-        }
-      }
+      runs = optimizeFromRandomStarts(
+          evaluator, request, args->random_starts, args->seed, log, [&](const StartRun& run) {
+            progress_lines.endLine();
+            if (!log) return;
+            const double elapsed =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time)
+                    .count();
+            *log << "--- random start " << run.start << "/" << args->random_starts << ": "
+                 << run.result.status << ", "
+                 << progressText(evaluator, run.result.evaluation, criterion) << ", "
+                 << elapsedAndRemaining(elapsed, run.start, args->random_starts) << "\n";
+          });
     }
-    std::size_t best = 0;
-    for (std::size_t i = 1; i < runs.size(); ++i) {
-      if (better(runs[i].result, runs[best].result, criterion)) best = i;
-    }
+    const std::size_t best = bestStartRun(runs, criterion);
     // --global reports its polished best, which is not one of the listed starts.
     const OptimizationResult& r = args->global > 0 ? global_result.best : runs[best].result;
     const GaitEvaluation<double>& e = r.evaluation;
@@ -280,9 +162,9 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
     const OptimizationOutputs outputs =
         optimizationOutputs(evaluator, config, r, args->out, [&](JsonWriter& w) {
           if (args->random_starts > 0) {
-            writeRandomStarts(w, runs, args->seed, runs[best].start, criterion);
+            writeRandomStartsJson(w, runs, args->seed, runs[best].start, criterion);
           }
-          if (args->global > 0) writeGlobal(w, global_result, runs, args->seed, criterion);
+          if (args->global > 0) writeGlobalSearchJson(w, global_result, runs, args->seed, criterion);
         });
     writeOptimizationOutputs(staged.path(), outputs);
     staged.commit();

@@ -1,26 +1,22 @@
-// `gaitopt sweep`: optimal steps over a list of walking speeds by continuation (opt/sweep.hpp)
+// `gaitopt sweep`: optimal steps over a list of walking speeds by continuation
+// (opt/continuation.hpp)
 // → OUT/sweep.csv and one folder per speed (summary.json, gait.yaml, trajectory.csv, as written
 // by `gaitopt optimize`); `gaitopt sweep-merge`: the sweep.csv of several shards in one file.
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "gaitopt/io/atomic_file.hpp"
 #include "gaitopt/gait/evaluator.hpp"
-#include "gaitopt/gait/summary.hpp"
+#include "gaitopt/io/atomic_file.hpp"
 #include "gaitopt/io/config_error.hpp"
-#include "gaitopt/io/optimize_config.hpp"
-#include "gaitopt/io/optimize_output.hpp"
-#include "gaitopt/opt/sweep.hpp"
+#include "gaitopt/io/sweep_file.hpp"
 
 namespace gaitopt::cli {
 namespace {
@@ -40,35 +36,6 @@ struct MergeArgs {
   std::string out;
   std::vector<std::string> shards;
 };
-
-// The sweep's own members of a speed's summary.json.
-void writeSweepMembers(JsonWriter& w, const SweepPoint& p) {
-  w.key("sweep").beginObject();
-  w.key("speed").value(p.speed);
-  w.key("warm_started").value(p.warm_started);
-  w.key("from_speed").value(p.from_speed);  // null (NaN) when started from the default guess
-  w.key("attempts").value(p.attempts);
-  w.key("total_iterations").value(p.total_iterations);
-  w.key("total_wall_time_s").value(p.total_wall_time_s);
-  w.endObject();
-}
-
-// A shard's sweep.csv: a regular file within the size limit (a directory would read as empty).
-std::string readText(const fs::path& path) {
-  const std::string name = printable(path.string());
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec))
-    throw CLI::ValidationError("SHARD_DIR", "'" + name + "' is missing or not a regular file");
-  if (fs::file_size(path, ec) > kMaxSweepCsvBytes)
-    throw CLI::ValidationError("SHARD_DIR", "'" + name + "' is larger than " +
-                                                std::to_string(kMaxSweepCsvBytes) +
-                                                " bytes (limit)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CLI::ValidationError("SHARD_DIR", "cannot read '" + name + "'");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 void registerSweep(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SweepArgs>();
@@ -126,9 +93,7 @@ void registerSweep(CLI::App& app, int& exit_code) {
 
     // The free-speed problem of the config: no target speed, the configured initial guess
     // (a gait file, or defaultInitialGuess without a speed).
-    OptimizeConfig free_config = config;
-    free_config.speed.reset();
-    free_config.options.target_speed = 0.0;
+    const OptimizeConfig free_config = freeSpeedConfig(config);
     const GaitEvaluator evaluator(free_config.robot, free_config.options,
                                   free_config.model_options);
     const OptimizationRequest base =
@@ -141,27 +106,19 @@ void registerSweep(CLI::App& app, int& exit_code) {
     // <unit>  elapsed <time> s, remaining ~<time> s"
     const auto progressLine = [&](const SweepProgress& p) {
       const OptimizationResult& r = p.point.result;
-      return "v=" + shortNumber(p.point.speed, "%.3f") + " m/s  status " + r.status + "  " +
+      return "v=" + shortNumber(p.point.speed, "%.3f") + " m/s  status " +
+             optimizationStatusName(r.status) + "  " +
              progressText(evaluator, r.evaluation, criterion) + "  " +
              elapsedAndRemaining(p.elapsed_s, p.done, p.total);
     };
     auto progress = [&](const SweepProgress& p) {
-      const OptimizationResult& r = p.point.result;
       if (p.free_speed) {
         if (!args->quiet) std::cout << "free speed: " << progressLine(p) << "\n" << std::flush;
         return;
       }
-      // The speed's outputs, as `gaitopt optimize` with `speed` set to it would write them.
-      OptimizeConfig speed_config = config;
-      speed_config.speed = p.point.speed;
-      speed_config.options.target_speed = p.point.speed;
-      const GaitEvaluator speed_evaluator(speed_config.robot, speed_config.options,
-                                          speed_config.model_options);
       const std::string folder = sweepFolderName(p.point.speed, decimals);
-      writeOptimizationOutputs(
-          (stage / folder).string(),
-          optimizationOutputs(speed_evaluator, speed_config, r, (out / folder).string(),
-                              [&](JsonWriter& w) { writeSweepMembers(w, p.point); }));
+      writeOptimizationOutputs((stage / folder).string(),
+                               sweepPointOutputs(config, p.point, (out / folder).string()));
       if (!args->quiet)
         std::cout << "[" << p.done << "/" << p.total << "] " << progressLine(p)
                   << (p.point.attempts > 1 ? "  (" + std::to_string(p.point.attempts) + " attempts)"
@@ -175,8 +132,9 @@ void registerSweep(CLI::App& app, int& exit_code) {
 
     std::vector<std::string> failed;
     for (const SweepPoint& p : points)
-      if (p.result.status != "optimal")
-        failed.push_back(shortNumber(p.speed, "%g") + " m/s (" + p.result.status + ")");
+      if (!isOptimal(p.result))
+        failed.push_back(shortNumber(p.speed, "%g") + " m/s (" +
+                         optimizationStatusName(p.result.status) + ")");
     std::cout << "sweep: " << points.size() - failed.size() << "/" << points.size()
               << " speeds optimal -> " << (out / "sweep.csv").string() << "\n";
     if (failed.empty()) {
@@ -203,15 +161,9 @@ void registerSweepMerge(CLI::App& app, int& exit_code) {
       ->required()
       ->expected(1, -1);
   cmd->callback([args, &exit_code]() {
-    std::vector<std::string> texts, names;
-    for (const std::string& dir : args->shards) {
-      const fs::path csv = fs::path(dir) / "sweep.csv";
-      names.push_back(csv.string());
-      texts.push_back(readText(csv));
-    }
     std::string merged;
     try {
-      merged = mergeSweepCsvs(texts, names);
+      merged = mergeShardSweepCsvs(args->shards);
     } catch (const std::invalid_argument& e) {
       throw CLI::ValidationError("SHARD_DIR", e.what());
     }
@@ -221,15 +173,8 @@ void registerSweepMerge(CLI::App& app, int& exit_code) {
     fs::create_directories(out, ec);
     if (ec) throw OutputError("--out '" + args->out + "' cannot be created: " + ec.message());
     writeFileAtomically((out / "sweep.csv").string(), merged);
-    std::size_t rows = 0, optimal = 0;
-    std::istringstream in(merged);
-    std::string line;
-    std::getline(in, line);  // header
-    while (std::getline(in, line)) {
-      ++rows;
-      if (line.find(",optimal,") != std::string::npos) ++optimal;
-    }
-    std::cout << "sweep-merge: " << rows << " speeds (" << optimal << " optimal) from "
+    const SweepCsvCount n = countSweepCsvRows(merged);
+    std::cout << "sweep-merge: " << n.rows << " speeds (" << n.optimal << " optimal) from "
               << args->shards.size() << " shard(s) -> " << (out / "sweep.csv").string() << "\n";
     exit_code = 0;
   });

@@ -9,7 +9,9 @@
 #include "gaitopt/ident/synth.hpp"
 #include "gaitopt/io/atomic_file.hpp"
 #include "gaitopt/io/gait_file.hpp"
+#include "gaitopt/io/measured_data.hpp"
 #include "gaitopt/io/robot_file.hpp"
+#include "gaitopt/io/synth_truth_file.hpp"
 
 namespace gaitopt::cli {
 namespace {

@@ -2,39 +2,27 @@
 
 #include <cmath>
 #include <iostream>
-#include <sstream>
+#include <optional>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/model/dynamics_pinned.hpp"
 
 namespace gaitopt::cli {
 namespace {
 
 bool parseDouble(const std::string& s, double& v) {
-  try {
-    std::size_t used = 0;
-    v = std::stod(s, &used);
-    return used == s.size() && std::isfinite(v);
-  } catch (const std::exception&) {
-    return false;
-  }
-}
-
-std::vector<std::string> split(const std::string& text, char sep) {
-  std::vector<std::string> parts;
-  std::stringstream in(text);
-  std::string part;
-  while (std::getline(in, part, sep)) parts.push_back(part);
-  if (!text.empty() && text.back() == sep) parts.push_back("");
-  return parts;
+  const std::optional<double> x = parseFiniteNumber(s);
+  if (x) v = *x;
+  return x.has_value();
 }
 
 }  // namespace
 
 std::vector<double> parseNumberList(const std::string& option, const std::string& text,
                                     std::size_t count) {
-  const std::vector<std::string> parts = split(text, ',');
+  const std::vector<std::string> parts = splitFields(text, ',');
   std::vector<double> out(parts.size());
   bool ok = parts.size() == count;
   for (std::size_t i = 0; ok && i < parts.size(); ++i) ok = parseDouble(parts[i], out[i]);
@@ -45,7 +33,7 @@ std::vector<double> parseNumberList(const std::string& option, const std::string
 }
 
 SampleRange parseSampleRange(const std::string& option, const std::string& text) {
-  const std::vector<std::string> parts = split(text, ':');
+  const std::vector<std::string> parts = splitFields(text, ':');
   SampleRange r{0.0, 0.0, 0};
   double n = 0.0;
   const bool ok = parts.size() == 3 && parseDouble(parts[0], r.a) && parseDouble(parts[1], r.b) &&

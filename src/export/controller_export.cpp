@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "gaitopt/io/config_error.hpp"
+#include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/file_digest.hpp"
 #include "gaitopt/io/json_writer.hpp"
 #include "gaitopt/model/dynamics_pinned.hpp"
@@ -91,26 +92,6 @@ std::vector<NumericColumn> numericColumns() {
       c.push_back({name + (i == 0 ? "_x" : "_z"), unit,
                    [field = field, i](ExportRow& r) -> double& { return (r.*field)(i); }});
   return c;
-}
-
-double parseNumber(const std::string& text, const std::string& path, const std::string& column,
-                   int line) {
-  try {
-    std::size_t used = 0;
-    const double v = std::stod(text, &used);
-    if (used == text.size() && std::isfinite(v)) return v;
-  } catch (const std::exception&) {
-  }
-  throw ConfigError(path, column, line, "not a finite number: '" + text + "'");
-}
-
-std::vector<std::string> splitCsv(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream s(line);
-  std::string cell;
-  while (std::getline(s, cell, ',')) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
 }
 
 void writePolynomial(JsonWriter& w, const std::string& name, const std::vector<double>& a) {
@@ -339,7 +320,7 @@ ExportCsvFile readExportCsv(const std::string& path) {
       if (colon != std::string::npos) f.meta[line.substr(2, colon - 2)] = line.substr(colon + 2);
       continue;
     }
-    const std::vector<std::string> cells = splitCsv(line);
+    const std::vector<std::string> cells = splitFields(line);
     if (cells.size() != expected.size())
       throw ConfigError(path, "", line_no,
                         "expected " + std::to_string(expected.size()) + " columns, got " +
@@ -352,8 +333,8 @@ ExportCsvFile readExportCsv(const std::string& path) {
       continue;
     }
     ExportRow r;
-    r.t = parseNumber(cells[0], path, "t", line_no);
-    r.step = static_cast<int>(parseNumber(cells[1], path, "step", line_no));
+    r.t = parseCsvNumber(cells[0], path, "t", line_no);
+    r.step = static_cast<int>(parseCsvNumber(cells[1], path, "step", line_no));
     if (cells[2] != "SS" && cells[2] != "DS")
       throw ConfigError(path, "phase", line_no, "expected SS or DS, got '" + cells[2] + "'");
     r.phase = cells[2] == "SS" ? Phase::SingleSupport : Phase::DoubleSupport;
@@ -361,7 +342,7 @@ ExportCsvFile readExportCsv(const std::string& path) {
       throw ConfigError(path, "stance", line_no, "expected left or right, got '" + cells[3] + "'");
     r.stance = cells[3] == "left" ? Leg::Left : Leg::Right;
     for (std::size_t i = 0; i < cols.size(); ++i)
-      cols[i].field(r) = parseNumber(cells[i + 4], path, cols[i].name, line_no);
+      cols[i].field(r) = parseCsvNumber(cells[i + 4], path, cols[i].name, line_no);
     f.rows.push_back(r);
   }
   if (!header_seen) throw ConfigError(path, "", line_no, "no header line");

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "gaitopt/gait/summary.hpp"
+#include "gaitopt/gait/constraint_summary.hpp"
 
 namespace gaitopt {
 

@@ -3,8 +3,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "gaitopt/io/robot_extensions.hpp"
-
 namespace gaitopt {
 
 namespace {

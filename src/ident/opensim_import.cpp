@@ -2,12 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <utility>
 
-#include "gaitopt/io/config_error.hpp"
-#include "gaitopt/io/opensim_table.hpp"
-#include "gaitopt/io/trc_file.hpp"
+#include "gaitopt/ident/data_error.hpp"
 #include "gaitopt/math/smoothing_spline.hpp"
 
 namespace gaitopt {
@@ -87,7 +84,7 @@ std::vector<Eigen::Index> samplesInside(const OpenSimTable& grf, const OpenSimTa
   for (Eigen::Index k = 0; k < grf.rows(); ++k)
     if (grf.values(k, 0) >= lo && grf.values(k, 0) <= hi) rows.push_back(k);
   if (rows.size() < 3) {
-    throw ConfigError(grf.file, "time", grf.first_data_line,
+    throw DataError(grf.file, "time", grf.first_data_line,
                       "fewer than 3 force-plate samples inside the IK time range of " + ik.file);
   }
   return rows;
@@ -139,7 +136,7 @@ void labelLegs(ImportedTrial& trial, const OpenSimTable& grf, const std::vector<
     }
     const bool right = trial.legs[0].contact[k], left = trial.legs[1].contact[k];
     if (!right && !left) {
-      throw ConfigError(grf.file, "", grf.first_data_line + int(rows[k]),
+      throw DataError(grf.file, "", grf.first_data_line + int(rows[k]),
                         "neither foot in contact at t = " + std::to_string(trial.t(k)) +
                             " s (vertical forces <= threshold): walking needs a foot on the ground");
     }
@@ -236,15 +233,15 @@ double importedAnkleVelocityX(const ImportedTrial& trial, const RobotParams& rob
          robot.l1 * std::cos(leg.shank.v(k)) * leg.shank.d(k);
 }
 
-ImportedTrial importOpenSimTrial(const OpenSimImportFiles& files, const RobotParams& robot,
+ImportedTrial importOpenSimTrial(const OpenSimRecording& recording, const RobotParams& robot,
                                  const OpenSimImportOptions& options) {
-  const OpenSimTable ik = readOpenSimTable(files.ik);
-  const OpenSimTable grf = readOpenSimTable(files.grf);
-  const std::optional<TrcData> trc =
-      files.trc.empty() ? std::nullopt : std::optional<TrcData>(readTrcFile(files.trc));
-  for (const auto& [file, n] : {std::pair<std::string, Eigen::Index>{ik.file, ik.rows()},
-                                {files.trc, trc ? trc->time.size() : Eigen::Index(3)}}) {
-    if (n < 3) throw ConfigError(file, "", 0, "fewer than 3 samples: nothing to smooth");
+  const OpenSimTable& ik = recording.ik;
+  const OpenSimTable& grf = recording.grf;
+  const std::optional<TrcData>& trc = recording.trc;
+  for (const auto& [file, n] :
+       {std::pair<std::string, Eigen::Index>{ik.file, ik.rows()},
+        {trc ? trc->file : std::string(), trc ? trc->time.size() : Eigen::Index(3)}}) {
+    if (n < 3) throw DataError(file, "", 0, "fewer than 3 samples: nothing to smooth");
   }
   const std::vector<Eigen::Index> rows = samplesInside(grf, ik);
   ImportedTrial trial;
@@ -290,7 +287,7 @@ ImportedTrial importOpenSimTrial(const OpenSimImportFiles& files, const RobotPar
       trial.belt_source = "IK ankle";
     }
     if (!belt) {
-      throw ConfigError(grf.file, "", 0,
+      throw DataError(grf.file, "", 0,
                         "no single support in the record: cannot estimate the belt speed; give it");
     }
     trial.belt_speed = *belt;
@@ -298,31 +295,6 @@ ImportedTrial importOpenSimTrial(const OpenSimImportFiles& files, const RobotPar
   removeBelt(trial);
   thesisCoordinates(trial);
   return trial;
-}
-
-std::string importedTrialCsv(const ImportedTrial& trial) {
-  std::string out = "t,alpha,delta1,delta2,delta3,delta4,phase,stance,step,R1x,R1z,R2x,R2z\n";
-  char buf[64];
-  const auto number = [&](double v) {
-    std::snprintf(buf, sizeof buf, "%.10g", v);
-    out += buf;
-  };
-  for (Eigen::Index k = 0; k < trial.t.size(); ++k) {
-    number(trial.t(k));
-    for (int j = 0; j < 5; ++j) {
-      out += ',';
-      number(trial.q(k, j));
-    }
-    out += trial.double_support[k] ? ",DS," : ",SS,";
-    out += sideName(trial.leg1[k]);
-    out += ',' + std::to_string(trial.step[k]);
-    for (int j = 0; j < 4; ++j) {
-      out += ',';
-      number(trial.reactions(k, j));
-    }
-    out += '\n';
-  }
-  return out;
 }
 
 }  // namespace gaitopt

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "gaitopt/io/config_error.hpp"
+#include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/json_writer.hpp"
 #include "gaitopt/io/tab_text.hpp"
 
@@ -21,15 +22,8 @@ const std::array<const char*, 4> kReactions = {"R1x", "R1z", "R2x", "R2z"};
 
 std::vector<std::string> splitCsvLine(std::string line) {
   if (!line.empty() && line.back() == '\r') line.pop_back();
-  std::vector<std::string> cells;
-  std::stringstream in(line);
-  std::string cell;
-  while (std::getline(in, cell, ',')) {
-    const auto b = cell.find_first_not_of(" \t");
-    const auto e = cell.find_last_not_of(" \t");
-    cells.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
-  }
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  std::vector<std::string> cells = splitFields(line);
+  for (std::string& cell : cells) cell = trimBlanks(cell);
   return cells;
 }
 

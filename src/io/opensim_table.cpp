@@ -82,16 +82,6 @@ std::vector<std::string> columnNames(const std::vector<std::string>& fields,
 
 }  // namespace
 
-bool OpenSimTable::hasColumn(const std::string& name) const {
-  return std::find(columns.begin(), columns.end(), name) != columns.end();
-}
-
-Eigen::VectorXd OpenSimTable::column(const std::string& name) const {
-  const auto it = std::find(columns.begin(), columns.end(), name);
-  if (it == columns.end()) throw ConfigError(file, name, 0, "column missing from the table");
-  return values.col(it - columns.begin());
-}
-
 OpenSimTable readOpenSimTable(const std::string& path) {
   const std::vector<std::string> lines = readTableLines(path);
   const Header header = readHeader(lines, path);

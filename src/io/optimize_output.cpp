@@ -1,11 +1,14 @@
 #include "gaitopt/io/optimize_output.hpp"
 
 #include <filesystem>
+#include <optional>
 
 #include "gaitopt/io/atomic_file.hpp"
-#include "gaitopt/gait/summary.hpp"
+#include "gaitopt/io/summary_file.hpp"
+#include "gaitopt/io/trajectory_file.hpp"
 #include "gaitopt/gait/trajectory.hpp"
 #include "gaitopt/io/gait_file.hpp"
+#include "gaitopt/opt/result_order.hpp"
 
 namespace gaitopt {
 
@@ -15,7 +18,7 @@ void writeSolverJson(JsonWriter& w, const SolverSettings& s, const OptimizationR
   w.key("solver").beginObject();
   w.key("backend").value(backendName(s.backend));
   w.key("hierarchy").value(strategyName(s.hierarchy));
-  w.key("status").value(r.status);
+  w.key("status").value(optimizationStatusName(r.status));
   w.key("iterations").value(r.iterations);
   w.key("function_evaluations").value(r.function_evaluations);
   w.key("gradient_evaluations").value(r.gradient_evaluations);
@@ -80,6 +83,82 @@ void writeOptimizationOutputs(const std::string& dir, const OptimizationOutputs&
   if (outputs.trajectory_csv) {
     writeFileAtomically((d / "trajectory.csv").string(), *outputs.trajectory_csv);
   }
+}
+
+namespace {
+
+void numberOrNull(JsonWriter& w, const std::optional<double>& v) {
+  if (v) {
+    w.value(*v);
+  } else {
+    w.null();
+  }
+}
+
+void writeRuns(JsonWriter& w, const std::vector<StartRun>& runs, Criterion c) {
+  w.key("runs").beginArray();
+  for (const StartRun& run : runs) {
+    w.beginObject();
+    w.key("start").value(run.start);
+    w.key("status").value(optimizationStatusName(run.result.status));
+    w.key("criterion");
+    numberOrNull(w, resultCriterion(run.result, c));
+    w.key("iterations").value(run.result.iterations);
+    w.key("wall_time_s").value(run.result.wall_time_s);
+    w.key("unmet_level");
+    if (run.result.unmet_level < 0) {
+      w.null();
+    } else {
+      w.value(run.result.unmet_level);
+    }
+    w.endObject();
+  }
+  w.endArray();
+}
+
+}  // namespace
+
+void writeRandomStartsJson(JsonWriter& w, const std::vector<StartRun>& runs, std::uint64_t seed,
+                           int best_start, Criterion c) {
+  const StartsSummary s = summarizeStarts(runs, c);
+  w.key("random_starts").beginObject();
+  w.key("count").value(static_cast<int>(runs.size()));
+  w.key("seed").value(static_cast<double>(seed));
+  w.key("converged").value(s.converged);
+  w.key("criterion_min");
+  numberOrNull(w, s.min);
+  w.key("criterion_max");
+  numberOrNull(w, s.max);
+  w.key("spread");
+  numberOrNull(w, s.min ? std::optional<double>(*s.max - *s.min) : std::nullopt);
+  w.key("best_start").value(best_start);
+  writeRuns(w, runs, c);
+  w.endObject();
+}
+
+void writeGlobalSearchJson(JsonWriter& w, const GlobalSearchResult& g,
+                           const std::vector<StartRun>& runs, std::uint64_t seed, Criterion c) {
+  w.key("global").beginObject();
+  w.key("count").value(static_cast<int>(g.starts.size()));
+  w.key("seed").value(static_cast<double>(seed));
+  w.key("optimised").value(static_cast<int>(runs.size()));
+  w.key("skipped").value(g.skipped);
+  w.key("converged").value(g.converged);
+  w.key("median_time_per_start_s").value(g.median_time_per_start_s);
+  w.key("best_start").value(g.best_start);
+  w.key("clusters").beginArray();
+  for (const OptimumCluster& cl : g.clusters) {
+    w.beginObject();
+    w.key("criterion").value(cl.criterion);
+    w.key("size").value(cl.size());
+    w.key("starts").beginArray();
+    for (int m : cl.members) w.value(m);
+    w.endArray();
+    w.endObject();
+  }
+  w.endArray();
+  writeRuns(w, runs, c);
+  w.endObject();
 }
 
 }  // namespace gaitopt

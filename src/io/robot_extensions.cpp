@@ -9,9 +9,6 @@
 
 namespace gaitopt {
 
-const std::array<const char*, 4> kPhysicalJointNames = {"knee_left", "hip_left", "hip_right",
-                                                        "knee_right"};
-
 namespace {
 
 void readJointMap(const YamlMap& parent, const std::string& key, std::array<double, 4>& values,

@@ -79,12 +79,6 @@ std::vector<std::string> markerNames(const std::string& line, const std::string&
 
 }  // namespace
 
-Eigen::MatrixX3d TrcData::marker(const std::string& name) const {
-  const auto it = std::find(markers.begin(), markers.end(), name);
-  if (it == markers.end()) throw ConfigError(file, name, 0, "marker missing from the file");
-  return positions.middleCols<3>(3 * (it - markers.begin()));
-}
-
 TrcData readTrcFile(const std::string& path) {
   const std::vector<std::string> lines = readTableLines(path);
   const TrcHeader h = readHeader(lines, path);

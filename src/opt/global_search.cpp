@@ -6,6 +6,7 @@
 #include <random>
 
 #include "gaitopt/opt/random_start.hpp"
+#include "gaitopt/opt/result_order.hpp"
 
 namespace gaitopt {
 namespace {
@@ -13,8 +14,6 @@ namespace {
 // Offset of the refinement's generator seed from the starts' (any fixed value: a distinct
 // stream, the same on every platform).
 constexpr std::uint64_t kRetryStream = 0x9E3779B97F4A7C15ULL;
-
-bool optimal(const OptimizationResult& r) { return r.status == "optimal"; }
 
 double criterionOf(const OptimizationResult& r, Criterion c) {
   return criterionValue(r.evaluation, c);
@@ -32,7 +31,7 @@ bool insideKnownBasin(const GaitParameters& p, const std::vector<GlobalStart>& d
                       const GlobalSearchSettings& s, const Parameterisation& par) {
   if (s.basin_radius <= 0.0) return false;
   for (const GlobalStart& d : done)
-    if (!d.skipped && optimal(d.result) &&
+    if (!d.skipped && isOptimal(d.result) &&
         scaledRmsDistance(p, d.result.parameters, par) < s.basin_radius)
       return true;
   return false;
@@ -42,7 +41,7 @@ void clusterRuns(GlobalSearchResult& g, const GlobalSearchSettings& s, Criterion
   std::vector<double> values;
   std::vector<int> index;
   for (const GlobalStart& st : g.starts)
-    if (!st.skipped && optimal(st.result)) {
+    if (!st.skipped && isOptimal(st.result)) {
       values.push_back(criterionOf(st.result, c));
       index.push_back(st.index);
     }
@@ -115,7 +114,8 @@ GlobalSearchResult globalSearch(const GaitEvaluator& ev, const OptimizationReque
     // Nothing converged: the run with the smallest violation is reported as it is.
     bool found = false;
     for (const GlobalStart& st : g.starts)
-      if (!st.skipped && (!found || st.result.constraint_violation < g.best.constraint_violation)) {
+      if (!st.skipped &&
+          (!found || betterResult(st.result, g.best, request.criterion, UnmetOrder::Violation))) {
         g.best = st.result;
         found = true;
       }
@@ -129,7 +129,7 @@ GlobalSearchResult globalSearch(const GaitEvaluator& ev, const OptimizationReque
   req.initial = local.parameters;
   if (log) *log << "--- global polish from start " << g.best_start << "\n";
   const OptimizationResult polished = optimizeGait(ev, req, log);
-  const bool keep = optimal(polished) &&
+  const bool keep = isOptimal(polished) &&
                     criterionOf(polished, request.criterion) <= criterionOf(local, request.criterion);
   g.best = keep ? polished : local;
   return g;

@@ -267,10 +267,10 @@ void classify(const FeasibilityVerdict& v, NlpStatus solver_status, Optimization
   r.unmet_level = v.failed_level;
   r.unmet_constraints = v.unmet_groups;
   r.between_nodes_worst = v.between_nodes.worst_scaled;
-  if (!v.feasible) r.status = "infeasible";
-  else if (solver_status == NlpStatus::Solved) r.status = "optimal";
-  else if (solver_status == NlpStatus::MaxIterations) r.status = "max_iter";
-  else r.status = "failed";
+  if (!v.feasible) r.status = OptimizationStatus::Infeasible;
+  else if (solver_status == NlpStatus::Solved) r.status = OptimizationStatus::Optimal;
+  else if (solver_status == NlpStatus::MaxIterations) r.status = OptimizationStatus::MaxIter;
+  else r.status = OptimizationStatus::Failed;
 }
 
 // A point's rank under the one verdict: feasible first, then (infeasible) the worst scaled
@@ -320,6 +320,29 @@ void setResult(const GaitEvaluator& ev, const OptimizationRequest& req, GaitPara
 }
 
 }  // namespace
+
+const char* optimizationStatusName(OptimizationStatus s) {
+  switch (s) {
+    case OptimizationStatus::Optimal: return "optimal";
+    case OptimizationStatus::Infeasible: return "infeasible";
+    case OptimizationStatus::MaxIter: return "max_iter";
+    case OptimizationStatus::Failed: break;
+  }
+  return "failed";
+}
+
+std::optional<OptimizationStatus> parseOptimizationStatus(const std::string& name) {
+  for (OptimizationStatus s : {OptimizationStatus::Optimal, OptimizationStatus::Infeasible,
+                               OptimizationStatus::MaxIter, OptimizationStatus::Failed})
+    if (name == optimizationStatusName(s)) return s;
+  return std::nullopt;
+}
+
+std::ostream& operator<<(std::ostream& out, OptimizationStatus s) {
+  return out << optimizationStatusName(s);
+}
+
+bool isOptimal(const OptimizationResult& r) { return r.status == OptimizationStatus::Optimal; }
 
 const char* backendName(Backend b) {
   return b == Backend::Ipopt ? "ipopt" : b == Backend::NloptSlsqp ? "nlopt_slsqp" : "nlopt_cobyla";

@@ -5,8 +5,6 @@
 namespace gaitopt {
 namespace {
 
-bool optimal(const OptimizationResult& r) { return r.status == "optimal"; }
-
 // `next` replaces `kept` (its cost added to the total) or is dropped (its cost still added).
 void account(OptimizationResult& kept, const OptimizationResult& next, bool replace) {
   const int iterations = kept.iterations + next.iterations;
@@ -36,7 +34,7 @@ StartRefinement refineStart(const GaitEvaluator& ev, const OptimizationRequest& 
   out.result = std::move(first);
   OptimizationResult& r = out.result;
   const Parameterisation& par = ev.options().parameterisation;
-  while (!optimal(r) && out.retries < s.max_retries) {
+  while (!isOptimal(r) && out.retries < s.max_retries) {
     ++out.retries;
     if (log) *log << "--- retry " << out.retries << " from a perturbed point\n";
     // Near where the last solve ended, not the best point the run returned (measured on
@@ -44,29 +42,29 @@ StartRefinement refineStart(const GaitEvaluator& ev, const OptimizationRequest& 
     const GaitParameters& centre = r.last_parameters.size() ? r.last_parameters : r.parameters;
     const GaitParameters start = randomStart(centre, rng, par, s.perturbation);
     const OptimizationResult next = solveFrom(ev, request, start, log);
-    account(r, next, optimal(next));
+    account(r, next, isOptimal(next));
   }
   // A restart that ends unmet is dropped anyway: no restoration for it (measured: with it, one
   // confirming restart of a Chesse start took 90 s against 12 s without).
   OptimizationRequest restart = request;
   restart.solver.restore_feasibility = false;
-  while (optimal(r) && out.restarts < s.max_restarts) {
+  while (isOptimal(r) && out.restarts < s.max_restarts) {
     ++out.restarts;
     if (log) *log << "--- restart " << out.restarts << " from the optimum\n";
     const double before = criterionValue(r.evaluation, request.criterion);
     const OptimizationResult next = solveFrom(ev, restart, r.parameters, log);
-    const bool lower = optimal(next) && criterionValue(next.evaluation, request.criterion) <
+    const bool lower = isOptimal(next) && criterionValue(next.evaluation, request.criterion) <
                                             before * (1.0 - s.min_improvement);
     account(r, next, lower);
     if (!lower) break;
   }
-  while (optimal(r) && out.perturbed_restarts < s.max_perturbed_restarts) {
+  while (isOptimal(r) && out.perturbed_restarts < s.max_perturbed_restarts) {
     ++out.perturbed_restarts;
     if (log) *log << "--- perturbed restart " << out.perturbed_restarts << " near the optimum\n";
     const double before = criterionValue(r.evaluation, request.criterion);
     const GaitParameters start = randomStart(r.parameters, rng, par, s.optimum_perturbation);
     const OptimizationResult next = solveFrom(ev, restart, start, log);
-    account(r, next, optimal(next) && criterionValue(next.evaluation, request.criterion) <
+    account(r, next, isOptimal(next) && criterionValue(next.evaluation, request.criterion) <
                                           before * (1.0 - s.min_improvement));
   }
   return out;

@@ -12,7 +12,8 @@
 #include "gaitopt/io/atomic_file.hpp"
 #include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/optimize_config.hpp"
-#include "gaitopt/opt/sweep.hpp"
+#include "gaitopt/io/sweep_file.hpp"
+#include "gaitopt/io/yaml_reader.hpp"
 #include "test_files.hpp"
 #include "test_support.hpp"
 

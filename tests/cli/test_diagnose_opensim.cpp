@@ -5,6 +5,7 @@
 #include <set>
 
 #include "gaitopt/ident/diagnose.hpp"
+#include "gaitopt/io/diagnosis_file.hpp"
 #include "gaitopt/io/measured_data.hpp"
 #include "gaitopt/io/robot_file.hpp"
 #include "test_opensim_data.hpp"

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "gaitopt/gait/trajectory.hpp"
+#include "gaitopt/io/trajectory_file.hpp"
 #include "test_files.hpp"
 #include "test_gait_document.hpp"
 #include "test_support.hpp"

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "gaitopt/opt/sweep.hpp"
+#include "gaitopt/io/sweep_file.hpp"
 #include "test_files.hpp"
 #include "test_support.hpp"
 #include "test_sweep_csv.hpp"

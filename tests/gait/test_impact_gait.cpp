@@ -10,7 +10,8 @@
 
 #include "gaitopt/gait/evaluator.hpp"
 #include "gaitopt/gait/impact_landing.hpp"
-#include "gaitopt/gait/summary.hpp"
+#include "gaitopt/gait/constraint_summary.hpp"
+#include "gaitopt/io/summary_file.hpp"
 #include "gaitopt/gait/trajectory.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/model/dynamics_pinned.hpp"

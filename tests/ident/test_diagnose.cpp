@@ -9,6 +9,7 @@
 #include <random>
 
 #include "gaitopt/ident/diagnose.hpp"
+#include "gaitopt/io/diagnosis_file.hpp"
 #include "gaitopt/ident/synth.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/io/robot_file.hpp"

@@ -8,6 +8,8 @@
 
 #include "gaitopt/ident/opensim_analysis.hpp"
 #include "gaitopt/ident/opensim_import.hpp"
+#include "gaitopt/io/opensim_table.hpp"
+#include "gaitopt/io/opensim_trial_file.hpp"
 #include "gaitopt/io/robot_file.hpp"
 #include "gaitopt/io/trc_file.hpp"
 #include "gaitopt/math/smoothing_spline.hpp"

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "gaitopt/ident/diagnose.hpp"
+#include "gaitopt/io/diagnosis_file.hpp"
 #include "gaitopt/ident/synth.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/io/measured_data.hpp"

@@ -7,6 +7,7 @@
 #include "gaitopt/ident/residual_model.hpp"
 #include "gaitopt/ident/synth.hpp"
 #include "gaitopt/io/gait_file.hpp"
+#include "gaitopt/io/measured_data.hpp"
 #include "test_ident_support.hpp"
 #include "test_support.hpp"
 

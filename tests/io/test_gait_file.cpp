@@ -12,7 +12,10 @@
 
 #include "gaitopt/io/config_error.hpp"
 #include "gaitopt/gait/evaluator.hpp"
-#include "gaitopt/gait/summary.hpp"
+#include "gaitopt/gait/constraint_summary.hpp"
+#include "gaitopt/io/summary_file.hpp"
+#include "gaitopt/io/trajectory_file.hpp"
+#include "gaitopt/gait/trajectory.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/io/yaml_reader.hpp"
 #include "test_files.hpp"

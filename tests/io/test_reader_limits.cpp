@@ -6,7 +6,7 @@
 
 #include "gaitopt/io/optimize_config.hpp"
 #include "gaitopt/io/yaml_reader.hpp"
-#include "gaitopt/opt/sweep.hpp"
+#include "gaitopt/io/sweep_file.hpp"
 #include "test_files.hpp"
 #include "test_support.hpp"
 

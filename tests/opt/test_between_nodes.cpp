@@ -11,7 +11,7 @@
 
 #include "gaitopt/gait/feasibility.hpp"
 #include "gaitopt/io/gait_file.hpp"
-#include "gaitopt/gait/summary.hpp"
+#include "gaitopt/io/summary_file.hpp"
 #include "gaitopt/io/optimize_config.hpp"
 #include "gaitopt/opt/optimizer.hpp"
 #include "test_support.hpp"
@@ -59,7 +59,7 @@ Run optimizeDefault(int ss_nodes, int ds_nodes, bool between_nodes) {
 TEST_CASE("optimize: the status is the verdict that evaluate writes", "[optimize][between_nodes]") {
   const Run run = optimizeDefault(32, 16, true);
   const OptimizationResult& r = run.result;
-  REQUIRE(r.status == "optimal");
+  REQUIRE(r.status == gaitopt::OptimizationStatus::Optimal);
   const gaitopt::FeasibilityVerdict v =
       gaitopt::feasibilityVerdict(run.evaluator, r.parameters, r.evaluation);
   CHECK(v.feasible);
@@ -90,7 +90,7 @@ TEST_CASE("optimize: a violation between the nodes is caught by the verdict and 
   const Run nodes = optimizeDefault(12, 6, false);
   const OptimizationResult& a = nodes.result;
   INFO("nodes only: " << a.status << ", between nodes " << a.between_nodes_worst);
-  CHECK(a.status == "infeasible");
+  CHECK(a.status == gaitopt::OptimizationStatus::Infeasible);
   CHECK(a.unmet_level == 5);
   CHECK(a.between_nodes_worst > 10.0 * gaitopt::kFeasibilityTolerance);
   CHECK(a.constraint_violation <= 1e-3);  // the nodes themselves nearly hold
@@ -102,7 +102,7 @@ TEST_CASE("optimize: a violation between the nodes is caught by the verdict and 
   const Run held = optimizeDefault(12, 6, true);
   const OptimizationResult& b = held.result;
   INFO("between nodes: " << b.status << ", between nodes " << b.between_nodes_worst << " " << (b.unmet_constraints.empty() ? std::string() : b.unmet_constraints[0]));
-  CHECK(b.status == "optimal");
+  CHECK(b.status == gaitopt::OptimizationStatus::Optimal);
   CHECK(b.between_nodes_worst <= gaitopt::kFeasibilityTolerance);
   CHECK(b.unmet_constraints.empty());
 }
@@ -117,7 +117,7 @@ TEST_CASE("optimize: a violation between the DS nodes is caught by the verdict a
   for (const std::string& n : a.unmet_constraints) unmet += n + " ";
   INFO("nodes only: " << a.status << ", between nodes " << a.between_nodes_worst << ", unmet "
                       << unmet);
-  CHECK(a.status == "infeasible");
+  CHECK(a.status == gaitopt::OptimizationStatus::Infeasible);
   CHECK(a.unmet_level == 5);
   CHECK_THAT(unmet, Contains("normal_force_ds"));
   CHECK(a.between_nodes_worst > 1e-3);
@@ -125,7 +125,7 @@ TEST_CASE("optimize: a violation between the DS nodes is caught by the verdict a
   const Run held = optimizeConfig("chevallereau_aoustin_0.75.yaml", 32, 16, true);
   const OptimizationResult& b = held.result;
   INFO("between nodes: " << b.status << ", between nodes " << b.between_nodes_worst);
-  CHECK(b.status == "optimal");
+  CHECK(b.status == gaitopt::OptimizationStatus::Optimal);
   CHECK(b.between_nodes_worst <= gaitopt::kFeasibilityTolerance);
   const gaitopt::FeasibilityVerdict v =
       gaitopt::feasibilityVerdict(held.evaluator, b.parameters, b.evaluation);
@@ -152,7 +152,7 @@ TEST_CASE("optimize: a run that ends unmet returns the least-violating point it 
       gaitopt::feasibilityVerdict(run.evaluator, start, run.evaluator.evaluate(start));
   INFO(r.status << " C_Gamma " << r.evaluation.C_Gamma << ", worst scaled " << v.worst_scaled
                 << " (start " << at_start.worst_scaled << ")");
-  CHECK(r.status == "infeasible");
+  CHECK(r.status == gaitopt::OptimizationStatus::Infeasible);
   CHECK(v.worst_scaled <= at_start.worst_scaled);
   CHECK(v.worst_scaled < 0.02);
   CHECK(r.between_nodes_worst == v.between_nodes.worst_scaled);
@@ -171,7 +171,7 @@ Run requireOptimal(const std::string& name) {
   const OptimizationResult& r = run.result;
   INFO(name << ": " << r.status << " C_Gamma " << r.evaluation.C_Gamma << ", between nodes "
             << r.between_nodes_worst);
-  CHECK(r.status == "optimal");
+  CHECK(r.status == gaitopt::OptimizationStatus::Optimal);
   CHECK(r.between_nodes_worst <= gaitopt::kFeasibilityTolerance);
   return run;
 }

@@ -95,7 +95,7 @@ TEST_CASE("global: a small multi-start run on the default problem finds the plai
           "[optimize]") {
   const DefaultProblem& d = defaultProblem();
   const gaitopt::OptimizationResult plain = gaitopt::optimizeGait(d.evaluator, d.request());
-  REQUIRE(plain.status == "optimal");
+  REQUIRE(plain.status == gaitopt::OptimizationStatus::Optimal);
   const double c_plain = gaitopt::criterionValue(plain.evaluation, d.config.criterion);
 
   gaitopt::GlobalSearchSettings gs;
@@ -107,7 +107,7 @@ TEST_CASE("global: a small multi-start run on the default problem finds the plai
   const gaitopt::GlobalSearchResult g = gaitopt::globalSearch(d.evaluator, d.request(), gs);
   REQUIRE(static_cast<int>(g.starts.size()) == gs.starts);
   REQUIRE_FALSE(g.clusters.empty());
-  CHECK(g.best.status == "optimal");
+  CHECK(g.best.status == gaitopt::OptimizationStatus::Optimal);
   const double c_best = gaitopt::criterionValue(g.best.evaluation, d.config.criterion);
   CHECK(std::abs(g.clusters.front().criterion - c_plain) <= 1e-3 * c_plain);
   CHECK(c_best <= g.clusters.front().criterion);
@@ -125,7 +125,7 @@ TEST_CASE("global: a small multi-start run on the default problem finds the plai
     if (st.skipped) continue;
     CHECK(st.restarts <= gs.refinement.max_restarts);
     CHECK(st.retries <= gs.refinement.max_retries);
-    if (st.result.status == "optimal") CHECK(st.restarts >= 1);
+    if (st.result.status == gaitopt::OptimizationStatus::Optimal) CHECK(st.restarts >= 1);
   }
 }
 
@@ -139,7 +139,7 @@ TEST_CASE("global: a start inside a known basin is skipped", "[optimize]") {
   if (gaitopt::test::lightTests()) gs.refinement.max_perturbed_restarts = 0;  // as above
   const gaitopt::GlobalSearchResult g = gaitopt::globalSearch(d.evaluator, d.request(), gs);
   REQUIRE(g.starts.size() == 2);
-  REQUIRE(g.starts[0].result.status == "optimal");
+  REQUIRE(g.starts[0].result.status == gaitopt::OptimizationStatus::Optimal);
   CHECK_FALSE(g.starts[0].skipped);
   CHECK(g.starts[1].skipped);
   CHECK(g.skipped == 1);

@@ -37,9 +37,9 @@ TEST_CASE("optimize: an impact gait returns to the shipped optimum from a pertur
   const OptimizationResult r = optimizeGait(ev, optimizationRequest(config, start));
   std::printf("  [impact_gait] optimize from a perturbed start: %s, C_Gamma %.6f (shipped %.6f), "
               "%d iterations, %.2f s\n",
-              r.status.c_str(), r.evaluation.C_Gamma, optimum.C_Gamma, r.iterations,
+              gaitopt::optimizationStatusName(r.status), r.evaluation.C_Gamma, optimum.C_Gamma, r.iterations,
               r.wall_time_s);
-  CHECK(r.status == "optimal");
+  CHECK(r.status == gaitopt::OptimizationStatus::Optimal);
   REQUIRE(r.evaluation.defined());
   CHECK(r.evaluation.C_Gamma == Approx(optimum.C_Gamma).epsilon(1e-3));
   CHECK(r.evaluation.speed == Approx(0.75).margin(1e-6));

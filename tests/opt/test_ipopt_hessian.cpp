@@ -187,8 +187,8 @@ TEST_CASE("ipopt: Ipopt and SLSQP reach the same optimum on the default problem"
   INFO("SLSQP " << slsqp.status << " C_Gamma " << slsqp.evaluation.C_Gamma << ", Ipopt "
                 << ipopt.status << " C_Gamma " << ipopt.evaluation.C_Gamma << " in "
                 << ipopt.iterations << " iterations");
-  REQUIRE(slsqp.status == "optimal");
-  REQUIRE(ipopt.status == "optimal");
+  REQUIRE(slsqp.status == gaitopt::OptimizationStatus::Optimal);
+  REQUIRE(ipopt.status == gaitopt::OptimizationStatus::Optimal);
   // 1.5e-4: Ipopt keeps every level-5 entry 1e-6 (scaled) strictly inside, where SLSQP's point
   // touches a DS friction-cone entry and exceeds a DS normal-force entry by 1.4e-5 N; measured
   // 8.3e-5 (default start) and 1.0e-4 (light start) relative, Ipopt above.

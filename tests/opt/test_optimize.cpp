@@ -308,7 +308,7 @@ TEST_CASE("optimize: the default request converges to a feasible, much better st
   const GaitEvaluator& ev = run.evaluator;
   INFO("status " << r.status << ", C_Gamma " << r.evaluation.C_Gamma << ", iterations "
                  << r.iterations << ", wall time " << r.wall_time_s << " s");
-  REQUIRE(r.status == "optimal");
+  REQUIRE(r.status == gaitopt::OptimizationStatus::Optimal);
   CHECK(r.unmet_level == -1);
   CHECK(r.unmet_constraints.empty());
   CHECK(r.evaluation.defined());
@@ -341,7 +341,7 @@ TEST_CASE("optimize: the default request converges to a feasible, much better st
 TEST_CASE("optimize: no feasible nearby point on the speed manifold is much better",
           "[optimize]") {
   const DefaultRun& run = defaultRun();
-  REQUIRE(run.result.status == "optimal");
+  REQUIRE(run.result.status == gaitopt::OptimizationStatus::Optimal);
   const GaitEvaluator& ev = run.evaluator;
   const GaitParameters best = run.result.parameters;
   const double c_best = run.result.evaluation.C_Gamma;
@@ -416,7 +416,7 @@ TEST_CASE("optimize: staged repairs a start that violates level 1, direct cannot
     request.solver.hierarchy = gaitopt::HierarchyStrategy::Direct;
     const OptimizationResult direct = gaitopt::optimizeGait(ev, request);
     INFO("direct: " << direct.status << ", unmet level " << direct.unmet_level);
-    CHECK((direct.status == "failed" || direct.status == "infeasible"));
+    CHECK((direct.status == gaitopt::OptimizationStatus::Failed || direct.status == gaitopt::OptimizationStatus::Infeasible));
     CHECK(direct.unmet_level == 1);
 
     request.solver.hierarchy = gaitopt::HierarchyStrategy::Staged;
@@ -426,7 +426,7 @@ TEST_CASE("optimize: staged repairs a start that violates level 1, direct cannot
       stages += s.name + ": " + gaitopt::nlpStatusName(s.status) + "; ";
     INFO("staged: " << staged.status << ", unmet level " << staged.unmet_level << ", stages "
                     << stages);
-    CHECK(staged.status == "optimal");
+    CHECK(staged.status == gaitopt::OptimizationStatus::Optimal);
     CHECK(scaledFeasible(ev, staged.evaluation));
     CHECK(std::abs(staged.evaluation.speed - 0.5) <= 1e-6);
     CHECK(staged.between_nodes_worst <= 1e-6);
@@ -452,7 +452,7 @@ TEST_CASE("optimize: 1.0 m/s on the default robot ends optimal, between the node
   const OptimizationResult r = gaitopt::optimizeGait(ev, request);
   INFO("status " << r.status << ", C_Gamma " << r.evaluation.C_Gamma << ", between nodes "
                  << r.between_nodes_worst);
-  CHECK(r.status == "optimal");
+  CHECK(r.status == gaitopt::OptimizationStatus::Optimal);
   CHECK(scaledFeasible(ev, r.evaluation));
   CHECK(std::abs(r.evaluation.speed - 1.0) <= 1e-6);
   CHECK(r.between_nodes_worst <= 1e-6);
@@ -472,7 +472,7 @@ TEST_CASE("optimize: an unreachable speed ends infeasible, with the unmet constr
   const OptimizationResult r = gaitopt::optimizeGait(ev, request);
   INFO("status " << r.status << ", unmet level " << r.unmet_level << ", violation "
                  << r.constraint_violation);
-  CHECK(r.status == "infeasible");
+  CHECK(r.status == gaitopt::OptimizationStatus::Infeasible);
   CHECK(r.unmet_level >= 0);
   CHECK_FALSE(r.unmet_constraints.empty());
   CHECK(r.constraint_violation > 1e-6);

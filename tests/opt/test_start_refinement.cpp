@@ -87,8 +87,8 @@ TEST_CASE("refine: a restart from an early SLSQP stop reaches the optimum", "[op
   // reach the optimum found from the configured start.
   const ConfigProblem p("chevallereau_aoustin_0.75.yaml");
   const auto [reference, req, first] = earlyStop(p, 1);
-  REQUIRE(reference.status == "optimal");
-  REQUIRE(first.status == "optimal");
+  REQUIRE(reference.status == gaitopt::OptimizationStatus::Optimal);
+  REQUIRE(first.status == gaitopt::OptimizationStatus::Optimal);
   CHECK(p.criterion(first) > 1.2 * p.criterion(reference));  // stopped early without the lever
 
   gaitopt::StartRefinementSettings s;
@@ -96,7 +96,7 @@ TEST_CASE("refine: a restart from an early SLSQP stop reaches the optimum", "[op
   s.max_perturbed_restarts = 0;
   std::mt19937_64 rng(1);
   const gaitopt::StartRefinement r = gaitopt::refineStart(p.evaluator, req, first, s, rng);
-  CHECK(r.result.status == "optimal");
+  CHECK(r.result.status == gaitopt::OptimizationStatus::Optimal);
   CHECK(r.retries == 0);
   CHECK(r.restarts >= 2);  // the improving restart and the one that finds nothing lower
   CHECK(r.restarts <= s.max_restarts);
@@ -117,18 +117,18 @@ TEST_CASE("refine: a start that is not optimal is retried from perturbed points"
   // generator state gives the same retries.
   const ConfigProblem p("default.yaml");
   const gaitopt::OptimizationResult reference = gaitopt::optimizeGait(p.evaluator, p.request());
-  REQUIRE(reference.status == "optimal");
+  REQUIRE(reference.status == gaitopt::OptimizationStatus::Optimal);
   gaitopt::OptimizationRequest cut = p.request();
   cut.solver.max_iter = 3;
   const gaitopt::OptimizationResult first = gaitopt::optimizeGait(p.evaluator, cut);
-  REQUIRE(first.status != "optimal");
+  REQUIRE(first.status != gaitopt::OptimizationStatus::Optimal);
 
   gaitopt::StartRefinementSettings s;
   s.max_restarts = 0;
   s.max_perturbed_restarts = 0;
   std::mt19937_64 rng(5);
   const gaitopt::StartRefinement r = gaitopt::refineStart(p.evaluator, p.request(), first, s, rng);
-  CHECK(r.result.status == "optimal");
+  CHECK(r.result.status == gaitopt::OptimizationStatus::Optimal);
   CHECK(r.retries >= 1);
   CHECK(r.retries <= s.max_retries);
   CHECK(std::abs(p.criterion(r.result) - p.criterion(reference)) <= 1e-3 * p.criterion(reference));
@@ -150,15 +150,15 @@ TEST_CASE("refine: perturbed restarts leave an early stop that a restart retrace
   // restarts reach the configured optimum's cluster (0.1 %).
   const ConfigProblem p("chesse_0.85.yaml");
   const auto [reference, req, first] = earlyStop(p, 3);
-  REQUIRE(reference.status == "optimal");
-  REQUIRE(first.status == "optimal");
+  REQUIRE(reference.status == gaitopt::OptimizationStatus::Optimal);
+  REQUIRE(first.status == gaitopt::OptimizationStatus::Optimal);
   CHECK(p.criterion(first) > 1.05 * p.criterion(reference));
 
   gaitopt::StartRefinementSettings s;
   s.max_retries = 0;
   std::mt19937_64 rng(1);
   const gaitopt::StartRefinement r = gaitopt::refineStart(p.evaluator, req, first, s, rng);
-  CHECK(r.result.status == "optimal");
+  CHECK(r.result.status == gaitopt::OptimizationStatus::Optimal);
   CHECK(r.perturbed_restarts == s.max_perturbed_restarts);
   CHECK(std::abs(p.criterion(r.result) - p.criterion(reference)) <= 1e-3 * p.criterion(reference));
   if (gaitopt::test::lightTests()) return;

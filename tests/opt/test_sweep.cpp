@@ -9,7 +9,8 @@
 #include <vector>
 
 #include "gaitopt/opt/initial_guess.hpp"
-#include "gaitopt/opt/sweep.hpp"
+#include "gaitopt/io/sweep_file.hpp"
+#include "test_files.hpp"
 #include "test_gait_support.hpp"
 #include "test_sweep_csv.hpp"
 
@@ -108,7 +109,7 @@ TEST_CASE("sweepSpeeds on the default robot: one chain", "[sweep]") {
       evaluator(), baseRequest(), speeds, SweepSettings{}, [&](const gaitopt::SweepProgress& p) {
         if (p.free_speed) {
           ++free_reports;
-          CHECK(p.point.result.status == "optimal");
+          CHECK(p.point.result.status == gaitopt::OptimizationStatus::Optimal);
         } else {
           done.push_back(p.done);
           CHECK(p.total == 3);
@@ -121,7 +122,7 @@ TEST_CASE("sweepSpeeds on the default robot: one chain", "[sweep]") {
   for (std::size_t i = 0; i < r.size(); ++i) {
     INFO("speed " << r[i].speed);
     CHECK(r[i].speed == speeds[i]);
-    CHECK(r[i].result.status == "optimal");
+    CHECK(r[i].result.status == gaitopt::OptimizationStatus::Optimal);
     CHECK(std::abs(r[i].result.evaluation.speed - speeds[i]) <= 1e-6);
     CHECK(r[i].attempts >= 1);
     if (!r[i].warm_started) ++cold;
@@ -147,7 +148,7 @@ TEST_CASE("sweepSpeeds: two threaded chains are deterministic and equal the two 
   for (std::size_t i = 0; i < a.size(); ++i) {
     INFO("speed " << a[i].speed);
     CHECK(a[i].speed == speeds[i]);
-    CHECK(a[i].result.status == "optimal");
+    CHECK(a[i].result.status == gaitopt::OptimizationStatus::Optimal);
     CHECK(std::abs(a[i].result.evaluation.speed - speeds[i]) <= 1e-6);
     CHECK(sameBits(a[i].result.parameters, b[i].result.parameters));
     CHECK(a[i].result.evaluation.C_Gamma == b[i].result.evaluation.C_Gamma);

@@ -4,7 +4,6 @@
 // samples are exact up to the quadrature rule. Positions are in the frame of the stance foot
 // (foot 1 at the origin).
 #include <optional>
-#include <string>
 #include <vector>
 
 #include "gaitopt/gait/evaluator.hpp"
@@ -56,10 +55,5 @@ std::vector<TrajectoryRow> sampleTrajectory(const GaitEvaluator& evaluator,
 // start. Requires evaluation.motion_computed.
 TrajectoryRow sampleTrajectoryAt(const GaitEvaluator& evaluator,
                                  const GaitEvaluation<double>& evaluation, Phase phase, double t);
-
-// trajectory.csv: t, phase, alpha, delta1..4, alphad, delta1d..4d, alphadd, delta1dd..4dd,
-// gamma1..4 (Γ*), R1x, R1z, R2x, R2z, x_swing, z_swing, x_com, z_com, then x/z of knee1, hip,
-// knee2, head, omega1..4, gamma_max1..4, sigma, z_clearance, zd_potential (empty in DS).
-std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows);
 
 }  // namespace gaitopt

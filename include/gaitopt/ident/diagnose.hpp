@@ -115,12 +115,4 @@ struct Diagnosis {
 Diagnosis diagnose(const RobotParams& robot, const ModelOptions& model_options,
                    const MeasuredData& data, const DiagnoseOptions& options = {});
 
-std::string diagnosisJson(const Diagnosis& d);
-std::string residualsCsv(const MeasuredData& data, const Diagnosis& d);
-std::string diagnosisReport(const Diagnosis& d);
-
-// The nominal robot file's document with the identified effects as extension keys
-// (io/robot_extensions.hpp): a valid robot file.
-std::string extendedRobotYaml(const std::string& robot_path, const RobotParams& extended);
-
 }  // namespace gaitopt

@@ -14,10 +14,9 @@
 
 #include "gaitopt/model/model.hpp"
 #include "gaitopt/model/robot_params.hpp"
+#include "gaitopt/model/stance.hpp"
 
 namespace gaitopt {
-
-enum class Stance { Left, Right };
 
 // Physical joint (0..3, kPhysicalJointNames order) driven by motor j (0..3) for a stance.
 inline int physicalJointOfMotor(int j, Stance stance) { return stance == Stance::Left ? j : 3 - j; }

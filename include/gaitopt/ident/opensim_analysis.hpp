@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "gaitopt/ident/opensim_import.hpp"
-#include "gaitopt/io/opensim_table.hpp"
+#include "gaitopt/ident/recorded_tables.hpp"
 #include "gaitopt/model/model.hpp"
 
 namespace gaitopt {
@@ -76,7 +76,5 @@ Eigen::MatrixX4d importedJointTorques(const ImportedTrial& trial, const Model& m
 
 OpenSimAnalysis analyseImportedTrial(const ImportedTrial& trial, const Model& model,
                                      const OpenSimTable* reference_id);
-
-std::string opensimAnalysisJson(const OpenSimAnalysis& analysis);
 
 }  // namespace gaitopt

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "gaitopt/ident/recorded_tables.hpp"
 #include "gaitopt/model/robot_params.hpp"
 
 namespace gaitopt {
@@ -18,10 +19,10 @@ enum class BodySide { Right = 0, Left = 1 };
 inline const char* sideName(BodySide s) { return s == BodySide::Right ? "right" : "left"; }
 inline BodySide otherSide(BodySide s) { return s == BodySide::Right ? BodySide::Left : BodySide::Right; }
 
-struct OpenSimImportFiles {
-  std::string ik;   // IK .mot: pelvis_tilt, pelvis_tx, pelvis_ty, hip_flexion_r/l, knee_angle_r/l, lumbar_extension
-  std::string grf;  // GRF .mot: <prefix>vx, vy, px, py per plate
-  std::string trc;  // optional ("" = none): markers for the trunk line and the belt speed
+struct OpenSimRecording {
+  OpenSimTable ik;   // IK .mot: pelvis_tilt, pelvis_tx, pelvis_ty, hip_flexion_r/l, knee_angle_r/l, lumbar_extension
+  OpenSimTable grf;  // GRF .mot: <prefix>vx, vy, px, py per plate
+  std::optional<TrcData> trc;  // markers for the trunk line and the belt speed
 };
 
 // Geometry of the scaled OpenSim model that the IK coordinates refer to (defaults: the planar
@@ -83,14 +84,12 @@ struct ImportedTrial {
   Eigen::MatrixXd reactions;      // N × 4: R1x, R1z, R2x, R2z (gravity frame, on the robot)
 };
 
-// Reads and converts; bad files or data that cannot be labelled (no contact, no single
-// support for the belt estimate, force-plate times outside the IK record) are ConfigErrors
-// naming the file. `robot` gives the thigh (l2) and shank (l1) lengths.
-ImportedTrial importOpenSimTrial(const OpenSimImportFiles& files, const RobotParams& robot,
+// Converts; data that cannot be labelled (no contact, no single support for the belt
+// estimate, force-plate times outside the IK record, a missing column) are DataErrors naming
+// the file. `robot` gives the thigh (l2) and shank (l1) lengths. The files are read by
+// io/opensim_trial_file.hpp.
+ImportedTrial importOpenSimTrial(const OpenSimRecording& recording, const RobotParams& robot,
                                  const OpenSimImportOptions& options = {});
-
-// The measured-data CSV (t, alpha, delta1..delta4, phase, stance, step, R1x, R1z, R2x, R2z).
-std::string importedTrialCsv(const ImportedTrial& trial);
 
 // Ankle position of `side` (hip + femur + shank, lengths of `robot`) at sample k, and its
 // horizontal velocity.

@@ -12,7 +12,7 @@
 
 #include "gaitopt/gait/trajectory.hpp"
 #include "gaitopt/ident/effects.hpp"
-#include "gaitopt/io/measured_data.hpp"
+#include "gaitopt/ident/measured_data.hpp"
 
 namespace gaitopt {
 

@@ -16,7 +16,7 @@
 #include "gaitopt/gait/options.hpp"
 #include "gaitopt/gait/parameters.hpp"
 #include "gaitopt/ident/effects.hpp"
-#include "gaitopt/io/measured_data.hpp"
+#include "gaitopt/ident/measured_data.hpp"
 
 namespace gaitopt {
 
@@ -43,9 +43,5 @@ MeasuredData synthesize(const RobotParams& robot, const GaitParameters& gait,
 // 0.01–0.04 rad, payload 2–8 kg, trunk_com ±0.02–0.05 m, slope 0.01–0.04 rad): hidden-effect
 // tests of identification pipelines.
 Effect randomEffect(EffectKind kind, std::mt19937_64& rng);
-
-// FILE.truth.json: the hidden truth (effects with values and units, seed, noise, steps).
-std::string synthTruthJson(const std::string& robot_path, const std::string& gait_path,
-                           const std::vector<Effect>& effects, const SynthOptions& options);
 
 }  // namespace gaitopt

@@ -1,29 +1,16 @@
 #pragma once
-// Measured walking data (issue 9): one CSV row per sample, header row, SI units, radians.
+// The CSV file of measured walking data (ident/measured_data.hpp): one row per sample, a
+// header row, SI units, radians.
 // Required columns t, alpha, delta1..delta4, phase (SS/DS), stance (left/right: the physical
 // leg that is leg 1 of the thesis convention at that sample), step (integer, increasing);
 // optional gamma1..gamma4 (measured joint-side motor torques Γ*, motor order) and
 // R1x, R1z, R2x, R2z (ground reactions, gravity frame), each group complete or absent. Columns
 // may come in any order; time may have gaps between steps.
 #include <string>
-#include <vector>
 
-#include "gaitopt/gait/trajectory.hpp"
-#include "gaitopt/ident/effects.hpp"
+#include "gaitopt/ident/measured_data.hpp"
 
 namespace gaitopt {
-
-struct MeasuredData {
-  std::vector<double> t;
-  std::vector<Vec5> q;  // α, δ1..δ4 as measured
-  std::vector<Phase> phase;
-  std::vector<Stance> stance;
-  std::vector<long> step;
-  bool has_torque = false, has_reactions = false;
-  std::vector<Vec4> gamma;      // when has_torque
-  std::vector<Vec4> reactions;  // R1x, R1z, R2x, R2z, when has_reactions
-  std::size_t size() const { return t.size(); }
-};
 
 // Minimum samples per step and steps per file accepted by readMeasuredCsv.
 constexpr int kMinSamplesPerStep = 20;

@@ -5,25 +5,11 @@
 // sample. Values are returned as written: `in_degrees` says whether the rotational columns are
 // in degrees, but which columns are rotational is known only to the caller (an IK file mixes
 // pelvis_tilt [deg] with pelvis_tx [m] under inDegrees=yes).
-#include <Eigen/Core>
 #include <string>
-#include <vector>
+
+#include "gaitopt/ident/recorded_tables.hpp"
 
 namespace gaitopt {
-
-struct OpenSimTable {
-  std::string file;
-  std::vector<std::string> columns;  // columns[0] == "time"
-  Eigen::MatrixXd values;            // rows × columns, column 0 the time [s]
-  bool in_degrees = false;
-  int first_data_line = 0;           // 1-based line of the first data row (for messages)
-
-  Eigen::Index rows() const { return values.rows(); }
-  Eigen::VectorXd time() const { return values.col(0); }
-  // The column called `name`; ConfigError (file, column) when there is none.
-  Eigen::VectorXd column(const std::string& name) const;
-  bool hasColumn(const std::string& name) const;
-};
 
 // Throws ConfigError naming the file, the column and the line for: no `endheader`; a missing
 // or malformed inDegrees flag; a header nRows/nColumns that disagrees with the table

@@ -1,14 +1,18 @@
 #pragma once
 // The outputs of one optimised walking step, shared by `gaitopt optimize` and `gaitopt sweep`:
-// summary.json (the gait summary of gait/summary.hpp plus `criterion` and `solver`, then any
+// summary.json (the gait summary of io/summary_file.hpp plus `criterion` and `solver`, then any
 // caller-specific members), gait.yaml (readable by `gaitopt evaluate` and as an initial guess)
 // and trajectory.csv (only for a defined step whose motion was computed).
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/opt/global_search.hpp"
 #include "gaitopt/opt/optimizer.hpp"
+#include "gaitopt/opt/start_runs.hpp"
 #include "gaitopt/io/json_writer.hpp"
 #include "gaitopt/io/optimize_config.hpp"
 
@@ -40,5 +44,16 @@ OptimizationOutputs optimizationOutputs(const GaitEvaluator& evaluator,
 // fresh directory (a StagedDirectory's, or a folder inside one), so that the three files
 // appear together when it is put in place.
 void writeOptimizationOutputs(const std::string& dir, const OptimizationOutputs& outputs);
+
+// The `random_starts` member of summary.json (`gaitopt optimize --random-starts`): the count,
+// seed, converged runs, criterion range and spread, the best start and every run.
+void writeRandomStartsJson(JsonWriter& w, const std::vector<StartRun>& runs, std::uint64_t seed,
+                           int best_start, Criterion criterion);
+
+// The `global` member (`--global`): the clusters of local optima (criterion, size, starts), the
+// median time per optimised start and every optimised run.
+void writeGlobalSearchJson(JsonWriter& w, const GlobalSearchResult& g,
+                           const std::vector<StartRun>& runs, std::uint64_t seed,
+                           Criterion criterion);
 
 }  // namespace gaitopt

@@ -22,11 +22,9 @@
 
 #include "gaitopt/io/yaml_reader.hpp"
 #include "gaitopt/model/robot_params.hpp"
+#include "gaitopt/model/stance.hpp"
 
 namespace gaitopt {
-
-// Physical joint names, in the order of JointExtras and SensorModel arrays.
-extern const std::array<const char*, 4> kPhysicalJointNames;
 
 // Reads the keys above from the robot document `doc` into `robot`.
 void readRobotExtensions(const YamlMap& doc, RobotParams& robot);

@@ -4,22 +4,11 @@
 // DataRate, CameraRate, NumFrames, NumMarkers, Units, ...; line 4 `Frame#`, `Time` and the
 // marker names (each followed by two empty fields); line 5 the X/Y/Z labels; then one row per
 // frame: frame number, time, X Y Z of every marker. Tab-separated.
-#include <Eigen/Core>
 #include <string>
-#include <vector>
+
+#include "gaitopt/ident/recorded_tables.hpp"
 
 namespace gaitopt {
-
-struct TrcData {
-  std::string file;
-  double rate = 0.0;                 // DataRate [Hz]
-  std::vector<std::string> markers;  // names, in file order
-  Eigen::VectorXd time;              // [s]
-  Eigen::MatrixXd positions;         // frames × 3·markers, [m] (converted from Units)
-
-  // frames × 3 positions (lab X, Y, Z) of marker `name`; ConfigError (file, name) when absent.
-  Eigen::MatrixX3d marker(const std::string& name) const;
-};
 
 // Throws ConfigError naming the file, the column and the line for: a missing or malformed
 // header (wrong first word, header names/values that do not pair up, NumMarkers or

@@ -65,13 +65,24 @@ struct StageReport {
   int iterations;
 };
 
+// How a run ended under the one feasibility verdict (gait/feasibility.hpp): Optimal (feasible,
+// the solver converged), Infeasible (a constraint unmet, whatever the solver says), MaxIter or
+// Failed (feasible, the solver stopped at its iteration limit or failed).
+enum class OptimizationStatus { Optimal, Infeasible, MaxIter, Failed };
+
+// "optimal", "infeasible", "max_iter", "failed": the names in summary.json and sweep.csv.
+const char* optimizationStatusName(OptimizationStatus s);
+// The status called `name`; empty for any other text.
+std::optional<OptimizationStatus> parseOptimizationStatus(const std::string& name);
+std::ostream& operator<<(std::ostream& out, OptimizationStatus s);
+
 struct OptimizationResult {
   GaitParameters parameters;
   // Where the run's last solve ended: `parameters` unless the run returned a better point it
   // met (a last point unmet); retries start near it.
   GaitParameters last_parameters;
   GaitEvaluation<double> evaluation;
-  std::string status;  // "optimal", "infeasible", "max_iter", "failed"
+  OptimizationStatus status = OptimizationStatus::Failed;
   int iterations = 0;
   int function_evaluations = 0, gradient_evaluations = 0;
   double wall_time_s = 0.0;
@@ -82,6 +93,8 @@ struct OptimizationResult {
   double between_nodes_worst = 0.0;
   std::vector<StageReport> stages;
 };
+
+bool isOptimal(const OptimizationResult& r);
 
 const char* backendName(Backend b);
 const char* strategyName(HierarchyStrategy s);

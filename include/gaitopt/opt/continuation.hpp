@@ -1,8 +1,8 @@
 #pragma once
 // Speed sweeps by continuation (§3.6 of the thesis: the first optimum of a sweep comes from a
 // free-speed optimisation, every other speed is warm-started from the optimum at a nearby
-// speed), the speed-range syntax of `gaitopt sweep --speeds`, the split of a speed list into
-// contiguous chunks (--jobs, --shard) and sweep.csv (writing and merging shards).
+// speed) and the split of a speed list into contiguous chunks (--jobs, --shard). sweep.csv and
+// the speed-range syntax of `gaitopt sweep`: io/sweep_file.hpp.
 //
 // A chain over a sorted list of speeds: (a) the free-speed optimum (computed once per call),
 // (b) the listed speed closest to its speed, started from it, (c) outward in both directions,
@@ -12,7 +12,6 @@
 // defaultInitialGuess. With jobs > 1 the list is cut into `jobs` contiguous chunks, each an
 // independent chain (started at its speed closest to the free-speed optimum) on its own thread;
 // each chunk's results are exactly those of a one-chain run on that chunk alone (e.g. a shard).
-#include <cstddef>
 #include <functional>
 #include <ostream>
 #include <string>
@@ -22,17 +21,18 @@
 
 namespace gaitopt {
 
-// "start:stop:step" [m/s], stop included when reached within a rounding tolerance (1e-9 step);
-// values are rounded to 1e-12 m/s so 0.2 + 0.1 gives 0.3. Throws std::invalid_argument when the
-// text is not three finite numbers, start ≤ 0, stop < start, step ≤ 0 or more than 10000 speeds.
-std::vector<double> parseSpeedRange(const std::string& text);
+// Limits of a sweep: the number of speeds, and how close two speeds may be [m/s].
+constexpr int kMaxSweepSpeeds = 10000;
+constexpr double kSweepSpeedTolerance = 1e-9;
 
-// Shard "i/n", i 0-based (0 ≤ i < n); throws std::invalid_argument otherwise.
+// `v` with six significant digits, as a user would write it ("0.2", not 0.20000000000000001).
+std::string speedText(double v);
+
+// Chunk `index` (0-based) of `count`.
 struct Shard {
   int index = 0;
   int count = 1;
 };
-Shard parseShard(const std::string& text);
 
 // `count` contiguous chunks of `sorted`, sizes differing by at most one (the later chunks take
 // the extra elements); throws std::invalid_argument if count < 1 or count > sorted.size().
@@ -85,29 +85,5 @@ std::vector<double> sweepRunSpeeds(const std::vector<double>& speeds,
 std::vector<SweepPoint> sweepSpeeds(const GaitEvaluator& evaluator, const OptimizationRequest& base,
                                     const std::vector<double>& speeds,
                                     const SweepSettings& settings, const ProgressFn& progress = {});
-
-// sweep.csv
-constexpr std::size_t kMaxSweepCsvBytes = std::size_t{4} << 20;  // read limit per file (4 MiB)
-extern const char* const kSweepCsvHeader;  // speed,status,C_Gamma,...,wall_time_s (no newline)
-// One row (no newline): full precision, empty fields where undefined; iterations and wall time
-// are totals over the speed's attempts.
-std::string sweepCsvRow(const GaitEvaluator& evaluator, const SweepPoint& point);
-std::string sweepCsv(const GaitEvaluator& evaluator, const std::vector<SweepPoint>& points);
-
-// Concatenation of several sweep.csv texts (`names` label them in messages), rows sorted by
-// speed. Strict: every column typed and range-checked (speed in (0, 10] m/s, a known status,
-// numbers or empty fields, durations >= 0, an integer iteration count); CRLF line ends, blank
-// lines and a missing final newline are accepted. Throws std::invalid_argument naming
-// file:line and the column if a header differs from kSweepCsvHeader, a row is malformed, a
-// speed appears twice (within 1e-9 m/s), or a limit is exceeded (kMaxSweepCsvBytes per text,
-// 4096 bytes per line, 10000 rows in all).
-std::string mergeSweepCsvs(const std::vector<std::string>& texts,
-                           const std::vector<std::string>& names);
-
-// Sub-folder of one speed: "v" + fixed-point speed with `decimals` digits ("v0.500");
-// sweepFolderDecimals gives the fewest decimals ≥ 3 (at most 12) that keep the list's names
-// distinct.
-std::string sweepFolderName(double speed, int decimals);
-int sweepFolderDecimals(const std::vector<double>& speeds);
 
 }  // namespace gaitopt

@@ -1,10 +1,11 @@
-#include "gaitopt/gait/summary.hpp"
+#include "gaitopt/io/summary_file.hpp"
 
 #include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
 
+#include "gaitopt/gait/constraint_summary.hpp"
 #include "gaitopt/gait/feasibility.hpp"
 #include "gaitopt/gait/impact_landing.hpp"
 
@@ -114,37 +115,6 @@ const char* constraintGroupUnit(int id) {
     case kImpactRateRatio: case kImpactOrbit: return "1";
     default: return "";
   }
-}
-
-ConstraintGroupSummary summarizeConstraintGroup(const ConstraintGroup& group,
-                                                const GaitEvaluation<double>& e,
-                                                double tolerance) {
-  ConstraintGroupSummary s;
-  double worst = -std::numeric_limits<double>::infinity();
-  bool nan = false;  // a Defined NaN would be an evaluator bug: report the group as null
-  for (int k = group.offset; k < group.offset + group.count; ++k) {
-    if (e.state[k] != ConstraintState::Defined) continue;
-    const double g = e.g[k];
-    ++s.defined;
-    nan = nan || std::isnan(g);
-    if (g > worst) worst = g;
-    if (!(g <= tolerance)) ++s.violated;
-  }
-  s.value = s.defined > 0 && !nan ? worst : std::numeric_limits<double>::quiet_NaN();
-  return s;
-}
-
-double maxDefinedViolation(const GaitEvaluation<double>& e) {
-  double worst = 0.0;
-  for (std::size_t k = 0; k < e.g.size(); ++k) {
-    if (e.state[k] == ConstraintState::Defined && e.g[k] > worst) worst = e.g[k];
-  }
-  return worst;
-}
-
-bool zeroDynamicsComputed(const GaitEvaluator& ev, const GaitEvaluation<double>& e) {
-  const ConstraintGroup& f = ev.layout()[kFPositive];
-  return f.count > 0 && e.state[f.offset] != ConstraintState::NotComputed;
 }
 
 void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitParameters& p,

@@ -1,10 +1,9 @@
-// The documents `gaitopt diagnose` writes: diagnosis.json, residuals.csv, report.md and
-// extended_robot.yaml (ident/diagnose.hpp).
+#include "gaitopt/io/diagnosis_file.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
-#include "gaitopt/ident/diagnose.hpp"
 #include "gaitopt/io/json_writer.hpp"
 #include "gaitopt/io/robot_extensions.hpp"
 #include "gaitopt/io/yaml_reader.hpp"

@@ -1,0 +1,40 @@
+#pragma once
+// An OpenSim walking trial read from its files (IK and GRF .mot, optional .trc markers) and
+// converted (ident/opensim_import.hpp), and the measured-data CSV of the converted trial.
+#include <string>
+#include <utility>
+
+#include "gaitopt/ident/data_error.hpp"
+#include "gaitopt/ident/opensim_import.hpp"
+#include "gaitopt/io/config_error.hpp"
+
+namespace gaitopt {
+
+struct OpenSimImportFiles {
+  std::string ik;   // IK .mot: pelvis_tilt, pelvis_tx, pelvis_ty, hip_flexion_r/l, knee_angle_r/l, lumbar_extension
+  std::string grf;  // GRF .mot: <prefix>vx, vy, px, py per plate
+  std::string trc;  // optional ("" = none): markers for the trunk line and the belt speed
+};
+
+// The tables of the files; ConfigError for a bad file (io/opensim_table.hpp, io/trc_file.hpp).
+OpenSimRecording readOpenSimRecording(const OpenSimImportFiles& files);
+
+// Reads and converts; bad files or data that cannot be labelled are ConfigErrors naming the
+// file.
+ImportedTrial importOpenSimTrial(const OpenSimImportFiles& files, const RobotParams& robot,
+                                 const OpenSimImportOptions& options = {});
+
+// run(), with a DataError of the recorded data reported as the ConfigError of its file.
+template <class Run>
+decltype(auto) withDataErrorsAsConfigErrors(Run&& run) {
+  try {
+    return std::forward<Run>(run)();
+  } catch (const DataError& e) {
+    throw ConfigError(e.file(), e.key(), e.line(), e.problem());
+  }
+}
+
+// The measured-data CSV (t, alpha, delta1..delta4, phase, stance, step, R1x, R1z, R2x, R2z).
+std::string importedTrialCsv(const ImportedTrial& trial);
+
+}  // namespace gaitopt

@@ -1,0 +1,50 @@
+#include "gaitopt/io/csv_table.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <exception>
+
+#include "gaitopt/io/config_error.hpp"
+
+namespace gaitopt {
+
+std::vector<std::string> splitFields(const std::string& line, char separator) {
+  std::vector<std::string> fields;
+  if (line.empty()) return fields;
+  std::string::size_type begin = 0;
+  while (true) {
+    const auto end = line.find(separator, begin);
+    fields.push_back(line.substr(begin, end == std::string::npos ? std::string::npos : end - begin));
+    if (end == std::string::npos) break;
+    begin = end + 1;
+  }
+  return fields;
+}
+
+std::optional<double> parseFiniteNumber(const std::string& field) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(field, &used);
+    if (used == field.size() && std::isfinite(v)) return v;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
+double parseCsvNumber(const std::string& field, const std::string& file,
+                      const std::string& column, int line) {
+  if (const std::optional<double> v = parseFiniteNumber(field)) return *v;
+  throw ConfigError(file, column, line, "not a finite number: '" + field + "'");
+}
+
+std::optional<double> parseDecimal(const std::string& field) {
+  if (field.empty() || field.size() > 64 ||
+      field.find_first_not_of("0123456789+-.eE") != std::string::npos)
+    return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(field.c_str(), &end);
+  if (end != field.c_str() + field.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+}  // namespace gaitopt
