@@ -16,7 +16,7 @@
 #include "gaitopt/export/controller_export.hpp"
 #include "gaitopt/gait/evaluator.hpp"
 #include "gaitopt/ident/diagnose.hpp"
-#include "gaitopt/impact/impact_solver.hpp"
+#include "gaitopt/impact/solve_impact.hpp"
 #include "gaitopt/io/impact_report.hpp"
 #include "gaitopt/model/dynamics_pinned.hpp"
 #include "gaitopt/gait/summary.hpp"
