@@ -41,6 +41,43 @@ Scored score(const Context& ctx, Fit f, const std::array<double, kNumChannels>& 
   return s;
 }
 
+// Screening: each remaining candidate (neither `accepted` nor `confounded`) with the accepted
+// ones, linearised about the current model (one LS solve for the increments; the accepted
+// effects may be nonlinear); (weighted RSS, candidate) by increasing RSS.
+std::vector<std::pair<double, int>> screen(const Context& ctx, const Linearisation& lin,
+                                           const std::vector<int>& accepted,
+                                           const std::vector<int>& confounded,
+                                           const std::array<double, kNumChannels>& sigma,
+                                           const Eigen::VectorXd& rb) {
+  std::vector<std::pair<double, int>> order;
+  for (int c = 0; c < static_cast<int>(lin.candidates.size()); ++c) {
+    if (std::find(accepted.begin(), accepted.end(), c) != accepted.end() ||
+        std::find(confounded.begin(), confounded.end(), c) != confounded.end())
+      continue;  // in a cause already, or in its class
+    std::vector<int> which = accepted;
+    which.push_back(c);
+    Eigen::MatrixXd J(ctx.fit.entries.size(), which.size());
+    for (std::size_t i = 0; i < which.size(); ++i)
+      J.col(i) = weightedVector(ctx.fit.entries, lin.columns[which[i]].fit, sigma);
+    const Eigen::VectorXd p = (J.transpose() * J).ldlt().solve(-J.transpose() * rb);
+    order.push_back({(rb + J * p).squaredNorm(), c});
+  }
+  std::sort(order.begin(), order.end());
+  return order;
+}
+
+// Candidate `c` alone, fitted on its linearisation about the nominal model (first round,
+// beyond the refined ones).
+Fit linearisedFit(const Context& ctx, const Linearisation& lin, int c,
+                  const std::array<double, kNumChannels>& sigma) {
+  Fit f = chordFit(ctx, lin, {c}, sigma, 0);
+  const Eigen::MatrixXd J = weightedVector(ctx.fit.entries, lin.columns[c].fit, sigma);
+  const double p = -(J.col(0).dot(weightedVector(ctx.fit.entries, lin.r0.fit, sigma))) / J.squaredNorm();
+  f.effects[0].value = effectValue(f.effects[0].kind, p);
+  f.r = {lin.r0.fit + lin.columns[c].fit * p, lin.r0.held + lin.columns[c].held * p};
+  return f;
+}
+
 bool sameCandidate(const Effect& a, const Effect& b) { return a.kind == b.kind && a.joint == b.joint; }
 
 }  // namespace
@@ -74,23 +111,9 @@ Selection selectCauses(const Context& ctx, const Linearisation& lin,
     sel.sigma = channelSigma(ctx.fit, fitMatrix(rows, ctx.fit.entries, sel.model.r.fit));  // current model
     const Eigen::VectorXd rb = weightedVector(ctx.fit.entries, sel.model.r.fit, sel.sigma);
     const double rss_base = rb.squaredNorm();
-    // Screening: each remaining candidate with the accepted ones, linearised about the current
-    // model (one LS solve for the increments; the accepted effects may be nonlinear).
-    std::vector<std::pair<double, int>> order;
-    for (int c = 0; c < static_cast<int>(lin.candidates.size()); ++c) {
-      if (std::find(sel.accepted.begin(), sel.accepted.end(), c) != sel.accepted.end() ||
-          std::find(confounded.begin(), confounded.end(), c) != confounded.end())
-        continue;  // in a cause already, or in its class
-      std::vector<int> which = sel.accepted;
-      which.push_back(c);
-      Eigen::MatrixXd J(ctx.fit.entries.size(), which.size());
-      for (std::size_t i = 0; i < which.size(); ++i)
-        J.col(i) = weightedVector(ctx.fit.entries, lin.columns[which[i]].fit, sel.sigma);
-      const Eigen::VectorXd p = (J.transpose() * J).ldlt().solve(-J.transpose() * rb);
-      order.push_back({(rb + J * p).squaredNorm(), c});
-    }
+    const std::vector<std::pair<double, int>> order =
+        screen(ctx, lin, sel.accepted, confounded, sel.sigma, rb);
     if (order.empty()) break;
-    std::sort(order.begin(), order.end());
     // Refinement of the best candidates on the full model.
     const int refined = std::min<int>(kRefined, order.size());
     std::vector<Scored> scored(refined);
@@ -110,15 +133,11 @@ Selection selectCauses(const Context& ctx, const Linearisation& lin,
     });
     if (sel.accepted.empty()) {
       for (const Scored& s : scored) sel.candidates.push_back(s.result);
-      for (std::size_t i = refined; i < order.size(); ++i) {  // linearised only
-        const std::vector<int> which{order[i].second};
-        Fit f = chordFit(ctx, lin, which, sel.sigma, 0);
-        const Eigen::MatrixXd J = weightedVector(ctx.fit.entries, lin.columns[which[0]].fit, sel.sigma);
-        const double p = -(J.col(0).dot(weightedVector(ctx.fit.entries, lin.r0.fit, sel.sigma))) / J.squaredNorm();
-        f.effects[0].value = effectValue(f.effects[0].kind, p);
-        f.r = {lin.r0.fit + lin.columns[which[0]].fit * p, lin.r0.held + lin.columns[which[0]].held * p};
-        sel.candidates.push_back(score(ctx, f, sel.sigma, rss_base, n, rb).result);
-      }
+      for (std::size_t i = refined; i < order.size(); ++i)  // linearised only
+        sel.candidates.push_back(
+            score(ctx, linearisedFit(ctx, lin, order[i].second, sel.sigma), sel.sigma, rss_base, n,
+                  rb)
+                .result);
     }
     const auto best = std::min_element(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) {
       return a.result.bic < b.result.bic;
