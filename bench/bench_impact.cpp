@@ -17,7 +17,7 @@
 #include "bench_timing.hpp"
 #include "gaitopt/gait/leg_geometry.hpp"
 #include "gaitopt/impact/impact_map.hpp"
-#include "gaitopt/impact/impact_solver.hpp"
+#include "gaitopt/impact/solve_impact.hpp"
 #include "gaitopt/io/robot_file.hpp"
 
 namespace {

@@ -23,7 +23,7 @@
 #include "gaitopt/gait/trajectory.hpp"
 #include "gaitopt/ident/diagnose.hpp"
 #include "gaitopt/io/diagnosis_file.hpp"
-#include "gaitopt/impact/impact_solver.hpp"
+#include "gaitopt/impact/solve_impact.hpp"
 #include "gaitopt/io/atomic_file.hpp"
 #include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/gait_file.hpp"

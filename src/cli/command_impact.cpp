@@ -5,10 +5,9 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "gaitopt/impact/impact_solver.hpp"
+#include "gaitopt/impact/solve_impact.hpp"
 #include "gaitopt/io/impact_report.hpp"
 #include "gaitopt/io/robot_file.hpp"
-#include "gaitopt/model/dynamics_pinned.hpp"
 #include "impact_input.hpp"
 
 namespace gaitopt::cli {
@@ -29,7 +28,7 @@ int runImpact(const ImpactArgs& args) {
   const Vec5 qd = toVec5(parseNumberList("--qd", args.qd, 5));
   requireFriction("--mu", args.mu);
   requireFoot2OnGround(model, q);
-  const double v2z = pinnedTerms(model, q, qd).D2.row(1).dot(qd);
+  const double v2z = foot2VerticalVelocity(model, q, qd);
   if (!(v2z < 0.0))
     throw BadImpactInput("--qd: foot 2 vertical velocity V2z = " + shortNumber(v2z) +
                          " m/s; foot 2 must arrive with V2z < 0");

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <string>
 
-#include "gaitopt/impact/impact_solver.hpp"
+#include "gaitopt/impact/solve_impact.hpp"
 
 namespace gaitopt {
 

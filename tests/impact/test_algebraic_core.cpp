@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <unsupported/Eigen/AutoDiff>
 
-#include "gaitopt/impact/algebraic.hpp"
+#include "gaitopt/impact/algebraic_impact_equations.hpp"
 #include "impact/impact_test_support.hpp"
 #include "test_support.hpp"
 

@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "gaitopt/impact/impact_map.hpp"
-#include "gaitopt/impact/impact_solver.hpp"
+#include "gaitopt/impact/solve_impact.hpp"
 #include "impact/impact_test_support.hpp"
 #include "test_support.hpp"
 

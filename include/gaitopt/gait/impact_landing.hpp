@@ -14,7 +14,7 @@
 
 #include "gaitopt/gait/leg_geometry.hpp"
 #include "gaitopt/gait/parameters.hpp"
-#include "gaitopt/impact/algebraic.hpp"
+#include "gaitopt/impact/algebraic_impact_equations.hpp"
 #include "gaitopt/model/dynamics_floating.hpp"
 
 namespace gaitopt {
@@ -90,7 +90,7 @@ struct LandingReport {
 LandingReport landingReport(const LandingImpact<double>& li, Landing landing,
                             double alphadot_minus);
 
-// Both impact solvers (impact/impact_solver.hpp) at the reported touchdown. The landing
+// Both impact solvers (impact/solve_impact.hpp) at the reported touchdown. The landing
 // requires the algebraic model's status "unique" with its own behaviour; the differential
 // model (Keller's) is reported beside it, with the largest difference of its post-impact
 // velocities from the gait's [same units as Xd].

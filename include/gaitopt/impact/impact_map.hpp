@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "gaitopt/impact/impact_solver.hpp"
+#include "gaitopt/impact/solve_impact.hpp"
 
 namespace gaitopt {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "gaitopt/impact/algebraic.hpp"
+#include "gaitopt/impact/algebraic_impact_equations.hpp"
 
 namespace gaitopt {
 
@@ -64,5 +64,29 @@ struct ImpactResult {
 // Contact state read from post-impact foot velocities V = [V1; V2] (zero test of
 // ImpactOptions::tolerance relative to `speed`).
 ImpactBehaviour contactState(const Eigen::Vector4d& V, double speed, double tolerance);
+
+// How both solvers build and classify their solutions.
+namespace detail {
+// Dimensionless scales of the zero tests: velocity scale |V2⁻|, impulse scale |V2⁻| / max W_ii.
+struct ImpactScales {
+  double speed, impulse;
+};
+ImpactScales impactScales(const ImpactSystem<double>& system);
+// Post-impact floating velocities, energy loss and contact state of total impulses I.
+void completeSolution(const ImpactSystem<double>& system, const Eigen::Vector4d& I,
+                      const ImpactOptions& options, ImpactSolution& solution);
+// Whether two solutions have the same impulses: within `impulse_tolerance` or, for large
+// impulses, within the same tolerance relative to their size.
+bool sameOutcome(const ImpactSolution& a, const ImpactSolution& b, double impulse_tolerance,
+                 double relative_tolerance);
+// Algebraic model: appends `s` unless a solution with the same outcome is already there; a
+// merged duplicate marks the kept one as boundary (two behaviours meeting at a zone edge).
+void addDistinctSolution(std::vector<ImpactSolution>& solutions, ImpactSolution s,
+                         double impulse_tolerance, double relative_tolerance);
+// inconsistent: no solution; indeterminate: at least two different outcomes; otherwise
+// accumulation when some solution went through a summed accumulation, else unique.
+ImpactStatus statusOf(const std::vector<ImpactSolution>& solutions, double impulse_tolerance,
+                      double relative_tolerance);
+}  // namespace detail
 
 }  // namespace gaitopt

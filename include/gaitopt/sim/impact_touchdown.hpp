@@ -1,6 +1,6 @@
 #pragma once
 // Touchdown with a rigid impact (thesis ch. 2) for gaitopt simulate: the impact solvers of
-// impact/impact_solver.hpp at the located touchdown, then the leg exchange (3.22)–(3.23).
+// impact/solve_impact.hpp at the located touchdown, then the leg exchange (3.22)–(3.23).
 //
 // Model: the algebraic impact (2.1)/(2.13) with Coulomb friction by default — the model the
 // impact-landing gaits are optimised with (gait/impact_landing.hpp), so the simulated cycle is
@@ -13,7 +13,7 @@
 #include <string>
 
 #include "gaitopt/gait/options.hpp"
-#include "gaitopt/impact/impact_solver.hpp"
+#include "gaitopt/impact/solve_impact.hpp"
 #include "gaitopt/sim/closed_loop.hpp"
 
 namespace gaitopt {

@@ -8,7 +8,7 @@
 #include <limits>
 #include <string>
 
-#include "gaitopt/impact/impact_solver.hpp"
+#include "gaitopt/impact/solve_impact.hpp"
 
 namespace gaitopt {
 namespace {

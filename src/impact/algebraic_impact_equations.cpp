@@ -1,4 +1,4 @@
-#include "gaitopt/impact/algebraic.hpp"
+#include "gaitopt/impact/algebraic_impact_equations.hpp"
 
 namespace gaitopt {
 

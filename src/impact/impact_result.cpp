@@ -1,7 +1,9 @@
-#include "gaitopt/impact/impact_solver.hpp"
+// The solutions both impact solvers return: names, the contact state after impact, and the
+// building and classification of the solution set.
+#include "gaitopt/impact/impact_result.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
 namespace gaitopt {
 
@@ -80,20 +82,5 @@ ImpactStatus statusOf(const std::vector<ImpactSolution>& solutions, double impul
 }
 
 }  // namespace detail
-
-ImpactResult solveImpact(const Model& model, const Vector7<double>& X,
-                         const Vector7<double>& Xd_minus, ImpactModelKind kind,
-                         const ImpactOptions& options) {
-  const ImpactSystem<double> system = impactSystem(model, X, Xd_minus);
-  return kind == ImpactModelKind::Algebraic ? solveAlgebraicImpact(system, options)
-                                            : solveDifferentialImpact(system, options);
-}
-
-ImpactResult solveImpactFromPinned(const Model& model, const Vec5& q, const Vec5& qd,
-                                   ImpactModelKind kind, const ImpactOptions& options) {
-  Vector7<double> X, Xd;
-  floatingStateFromPinned(model, q, qd, X, Xd);
-  return solveImpact(model, X, Xd, kind, options);
-}
 
 }  // namespace gaitopt

@@ -1,7 +1,7 @@
 // Algebraic impact: the 12 behaviours of Appendix C enumerated, every consistent one kept.
 #include <cmath>
 
-#include "gaitopt/impact/impact_solver.hpp"
+#include "gaitopt/impact/solve_impact.hpp"
 
 namespace gaitopt {
 

@@ -1,0 +1,31 @@
+#pragma once
+// Stepwise model selection of the diagnosis (ident/diagnose.hpp): per round the remaining
+// candidates screened linearised about the current model, the best refined jointly with the
+// accepted effects and scored (BIC, F-type test with the autocorrelation-inflated variance,
+// held-out error); the lowest BIC accepted when significant, better on the held-out steps and
+// of practical gain; candidates indistinguishable from it recorded as confounded.
+#include <array>
+#include <vector>
+
+#include "gaitopt/ident/diagnosis_fit.hpp"
+
+namespace gaitopt::diagnosis {
+
+struct Selection {
+  std::vector<int> accepted;  // candidate indices (Linearisation::candidates) of the model
+  Fit model;                  // the accepted model, converged
+  std::array<double, kNumChannels> sigma;  // noise levels of the last model tested
+  std::vector<CandidateResult> candidates;  // first round, every candidate
+  std::vector<Cause> causes;                // with the values of `model`
+};
+
+// Every (effect, physical joint) candidate of the options' kinds that the data can show.
+std::vector<Effect> candidateEffects(const DiagnoseOptions& o, const MeasuredData& d);
+
+// Up to max_causes rounds from the nominal model (lin.r0), starting from the noise levels
+// `sigma` of the nominal residuals.
+Selection selectCauses(const Context& ctx, const Linearisation& lin,
+                       const std::array<double, kNumChannels>& sigma, const DiagnoseOptions& o,
+                       const StageProgress& progress);
+
+}  // namespace gaitopt::diagnosis
