@@ -28,7 +28,7 @@
 //       unmet level and groups, violation, criterion, time) and its stages.
 //       --start-config NAME (repeatable) restricts (g) to configs/NAME; --no-restarts and
 //       --no-retries and --no-perturbed-restarts switch off the three levers of the start
-//       refinement (start_refinement.hpp). --global-per-start K: each of the N "starts" is
+//       restarts (start_restarts.hpp). --global-per-start K: each of the N "starts" is
 //       instead run s = 1..N of `gaitopt optimize --global K --seed s` (globalSearchSettings,
 //       the CLI's settings: basin skip on, every start refined, the best polished); its final
 //       is the polished best, its time the run's wall time; the N finals are clustered (0.1 %)
@@ -160,7 +160,7 @@ void usage(std::ostream& out) {
          "  --no-configs    skip the chesse / chevallereau_aoustin gradient comparison\n"
          "  --random-starts N  run (g) alone: N seeded random starts on each shipped config\n"
          "  --start-config NAME  (g) on configs/NAME only (repeatable)\n"
-         "  --no-restarts   (g) without the restarts from an optimum (start_refinement.hpp)\n"
+         "  --no-restarts   (g) without the restarts from an optimum (start_restarts.hpp)\n"
          "  --no-retries    (g) without the perturbed retries of a start not optimal\n"
          "  --no-perturbed-restarts  (g) without the perturbed restarts near an optimum\n"
          "  --global-per-start K  (g) with N runs of `gaitopt optimize --global K --seed s`,\n"
@@ -301,7 +301,7 @@ struct StartProtocol {
 };
 
 StartProtocol runStartProtocol(const std::string& name, int starts,
-                               const StartRefinementSettings& refinement) {
+                               const RestartSettings& restart_settings) {
   const OptimizeConfig c = loadOptimizeConfig(std::string(kConfigDir) + name);
   const GaitEvaluator cev(c.robot, c.options, c.model_options);
   OptimizationRequest req = optimizationRequest(c, configuredInitialGuess(c, cev.model()));
@@ -309,7 +309,7 @@ StartProtocol runStartProtocol(const std::string& name, int starts,
   GlobalSearchSettings gs;
   gs.starts = starts;
   gs.basin_radius = 0.0;
-  gs.refinement = refinement;
+  gs.restart_settings = restart_settings;
   return {name, starts, globalSearch(cev, req, gs), c.criterion};
 }
 
@@ -456,7 +456,7 @@ void writeGlobalProtocol(JsonWriter& w, const GlobalProtocol& p) {
 
 // Runs (g) alone; exit status as main's.
 int startProtocolOnly(int starts, int global_per_start, const std::vector<std::string>& names,
-                      const StartRefinementSettings& refinement, const std::string& json_path,
+                      const RestartSettings& restart_settings, const std::string& json_path,
                       const Environment& env) {
   if (global_per_start > 0)
     std::printf("(g) --global protocol: %d runs per configuration, run s = `gaitopt optimize "
@@ -464,8 +464,8 @@ int startProtocolOnly(int starts, int global_per_start, const std::vector<std::s
   else
     std::printf("(g) random-start protocol: %d starts per configuration, seed 1, up to %d "
                 "restarts, %d retries and %d perturbed restarts per start\n",
-                starts, refinement.max_restarts, refinement.max_retries,
-                refinement.max_perturbed_restarts);
+                starts, restart_settings.max_restarts, restart_settings.max_retries,
+                restart_settings.max_perturbed_restarts);
   std::vector<StartProtocol> protocols;
   std::vector<GlobalProtocol> global_protocols;
   try {
@@ -475,7 +475,7 @@ int startProtocolOnly(int starts, int global_per_start, const std::vector<std::s
         printGlobalProtocol(global_protocols.back());
         continue;
       }
-      protocols.push_back(runStartProtocol(name, starts, refinement));
+      protocols.push_back(runStartProtocol(name, starts, restart_settings));
       printStartProtocol(protocols.back());
     }
   } catch (const std::exception& e) {
@@ -505,7 +505,7 @@ int main(int argc, char** argv) {
       global_per_start = 0;
   bool with_ipopt = true, with_configs = true, ipopt_only = false;
   std::vector<std::string> start_configs;
-  StartRefinementSettings refinement;
+  RestartSettings restart_settings;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
@@ -535,11 +535,11 @@ int main(int argc, char** argv) {
     } else if (arg == "--start-config" && has_value) {
       start_configs.push_back(argv[++i]);
     } else if (arg == "--no-restarts") {
-      refinement.max_restarts = 0;
+      restart_settings.max_restarts = 0;
     } else if (arg == "--no-retries") {
-      refinement.max_retries = 0;
+      restart_settings.max_retries = 0;
     } else if (arg == "--no-perturbed-restarts") {
-      refinement.max_perturbed_restarts = 0;
+      restart_settings.max_perturbed_restarts = 0;
     } else if (arg == "--no-configs") {
       with_configs = false;
     } else {
@@ -559,7 +559,7 @@ int main(int argc, char** argv) {
     printEnvironment("bench_optimize", env);
     if (start_configs.empty())
       start_configs = {"default.yaml", "chesse_0.85.yaml", "chevallereau_aoustin_0.75.yaml"};
-    return startProtocolOnly(random_starts, global_per_start, start_configs, refinement,
+    return startProtocolOnly(random_starts, global_per_start, start_configs, restart_settings,
                              json_path, env);
   }
   const std::string default_path = std::string(kConfigDir) + "default.yaml";

@@ -1,6 +1,6 @@
 #include "gaitopt/io/optimize_config.hpp"
 
-#include "gaitopt/gait/refinement.hpp"
+#include "gaitopt/gait/richer_parameterisation.hpp"
 
 #include <array>
 #include <cmath>
@@ -207,7 +207,7 @@ GaitParameters configuredInitialGuess(const OptimizeConfig& config, const Model&
   // A coarser start is written in the configured parameterisation without changing its motion.
   GaitOptions coarse = config.options;
   coarse.parameterisation = from;
-  return refineParameters(GaitEvaluator(config.robot, coarse, config.model_options), p,
+  return toRicherParameterisation(GaitEvaluator(config.robot, coarse, config.model_options), p,
                           config.options.parameterisation);
 }
 

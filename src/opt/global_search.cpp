@@ -11,7 +11,7 @@
 namespace gaitopt {
 namespace {
 
-// Offset of the refinement's generator seed from the starts' (any fixed value: a distinct
+// Offset of the restarts' generator seed from the starts' (any fixed value: a distinct
 // stream, the same on every platform).
 constexpr std::uint64_t kRetryStream = 0x9E3779B97F4A7C15ULL;
 
@@ -97,8 +97,8 @@ GlobalSearchResult globalSearch(const GaitEvaluator& ev, const OptimizationReque
       OptimizationRequest req = request;
       req.initial = st.start;
       req.solver.restore_feasibility = true;
-      StartRefinement refined =
-          refineStart(ev, req, optimizeGait(ev, req, log), s.refinement, retry_rng, log);
+      RestartedStart refined =
+          improveByRestarts(ev, req, optimizeGait(ev, req, log), s.restart_settings, retry_rng, log);
       st.result = std::move(refined.result);
       st.restarts = refined.restarts;
       st.retries = refined.retries;

@@ -8,7 +8,7 @@
 
 #include "gaitopt/gait/leg_geometry.hpp"
 #include "gaitopt/gait/path_curve.hpp"
-#include "gaitopt/gait/refinement.hpp"
+#include "gaitopt/gait/richer_parameterisation.hpp"
 #include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/io/yaml_reader.hpp"
@@ -171,7 +171,7 @@ TEST_CASE("exact gradients of a B-spline gait equal finite differences", "[gait]
   const GaitEvaluator coarse = test::defaultGaitEvaluator();
   const GaitEvaluator ev = test::defaultGaitEvaluator(withBasis(3, 1, PathBasis::BSpline));
   const Parameterisation& par = ev.options().parameterisation;
-  GaitParameters p = refineParameters(coarse, test::optimalStep(), par);
+  GaitParameters p = toRicherParameterisation(coarse, test::optimalStep(), par);
   p(par.ssPointIndex(0)) += 0.02;
   p(par.dsPointIndex(0)) -= 0.01;
   const GaitGradient grad = ev.evaluateWithGradient(p);

@@ -159,7 +159,7 @@ TEST_CASE("optimize: a run that ends unmet returns the least-violating point it 
   REQUIRE(v.speed_error);
   CHECK(std::abs(*v.speed_error) <= gaitopt::kFeasibilityTolerance);
   CHECK(r.unmet_constraints == std::vector<std::string>{"clearance"});
-  // Where the last solve ended is kept for the retries of refineStart: the drifted point.
+  // Where the last solve ended is kept for the retries of improveByRestarts: the drifted point.
   const gaitopt::FeasibilityVerdict last = gaitopt::feasibilityVerdict(
       run.evaluator, r.last_parameters, run.evaluator.evaluate(r.last_parameters));
   CHECK(last.worst_scaled > 10.0 * v.worst_scaled);

@@ -84,11 +84,11 @@ TEST_CASE("global: the settings of --global K --seed S are the library's default
   CHECK(s.cluster_tolerance == d.cluster_tolerance);
   CHECK(s.basin_radius == d.basin_radius);
   CHECK(s.basin_radius > 0.0);  // the basin skip is on, unlike bench_optimize's single starts
-  CHECK(s.refinement.max_restarts == d.refinement.max_restarts);
-  CHECK(s.refinement.max_retries == d.refinement.max_retries);
-  CHECK(s.refinement.max_perturbed_restarts == d.refinement.max_perturbed_restarts);
-  CHECK(s.refinement.perturbation == d.refinement.perturbation);
-  CHECK(s.refinement.optimum_perturbation == d.refinement.optimum_perturbation);
+  CHECK(s.restart_settings.max_restarts == d.restart_settings.max_restarts);
+  CHECK(s.restart_settings.max_retries == d.restart_settings.max_retries);
+  CHECK(s.restart_settings.max_perturbed_restarts == d.restart_settings.max_perturbed_restarts);
+  CHECK(s.restart_settings.perturbation == d.restart_settings.perturbation);
+  CHECK(s.restart_settings.optimum_perturbation == d.restart_settings.optimum_perturbation);
 }
 
 TEST_CASE("global: a small multi-start run on the default problem finds the plain optimum",
@@ -101,9 +101,9 @@ TEST_CASE("global: a small multi-start run on the default problem finds the plai
   gaitopt::GlobalSearchSettings gs;
   gs.starts = gaitopt::test::lightTests() ? 2 : 3;
   gs.seed = 1;
-  // The perturbed restarts have their own test (test_start_refinement.cpp); 3 staged solves
+  // The perturbed restarts have their own test (test_start_restarts.cpp); 3 staged solves
   // per optimal start are the sanitizer pass's largest cost here.
-  if (gaitopt::test::lightTests()) gs.refinement.max_perturbed_restarts = 0;
+  if (gaitopt::test::lightTests()) gs.restart_settings.max_perturbed_restarts = 0;
   const gaitopt::GlobalSearchResult g = gaitopt::globalSearch(d.evaluator, d.request(), gs);
   REQUIRE(static_cast<int>(g.starts.size()) == gs.starts);
   REQUIRE_FALSE(g.clusters.empty());
@@ -119,12 +119,12 @@ TEST_CASE("global: a small multi-start run on the default problem finds the plai
   CHECK(g.converged + g.skipped <= gs.starts);
   CHECK(g.median_time_per_start_s > 0.0);
   CHECK(g.best_start == g.clusters.front().members.front());
-  // Each optimised start was refined (start_refinement.hpp): an optimal one restarted at least
+  // Each optimised start was refined (start_restarts.hpp): an optimal one restarted at least
   // once, within the settings' bounds.
   for (const gaitopt::GlobalStart& st : g.starts) {
     if (st.skipped) continue;
-    CHECK(st.restarts <= gs.refinement.max_restarts);
-    CHECK(st.retries <= gs.refinement.max_retries);
+    CHECK(st.restarts <= gs.restart_settings.max_restarts);
+    CHECK(st.retries <= gs.restart_settings.max_retries);
     if (st.result.status == gaitopt::OptimizationStatus::Optimal) CHECK(st.restarts >= 1);
   }
 }
@@ -136,7 +136,7 @@ TEST_CASE("global: a start inside a known basin is skipped", "[optimize]") {
   gaitopt::GlobalSearchSettings gs;
   gs.starts = 2;
   gs.basin_radius = 10.0;
-  if (gaitopt::test::lightTests()) gs.refinement.max_perturbed_restarts = 0;  // as above
+  if (gaitopt::test::lightTests()) gs.restart_settings.max_perturbed_restarts = 0;  // as above
   const gaitopt::GlobalSearchResult g = gaitopt::globalSearch(d.evaluator, d.request(), gs);
   REQUIRE(g.starts.size() == 2);
   REQUIRE(g.starts[0].result.status == gaitopt::OptimizationStatus::Optimal);

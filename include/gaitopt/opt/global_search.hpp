@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "gaitopt/opt/optimizer.hpp"
-#include "gaitopt/opt/start_refinement.hpp"
+#include "gaitopt/opt/start_restarts.hpp"
 
 namespace gaitopt {
 
@@ -30,9 +30,9 @@ struct GlobalSearchSettings {
   double cluster_tolerance = 1e-3;  // relative, 0.1 %
   // RMS over the parameters of (p − optimum)/parameterScales(); 0 disables the skip.
   double basin_radius = 0.1;
-  // Each optimised start refined (start_refinement.hpp); max_restarts = max_retries = 0 for
+  // Each optimised start refined (start_restarts.hpp); max_restarts = max_retries = 0 for
   // the plain staged solve.
-  StartRefinementSettings refinement;
+  RestartSettings restart_settings;
 };
 
 // The settings of `gaitopt optimize --global K --seed S` (the library defaults otherwise), shared
@@ -43,8 +43,8 @@ struct GlobalStart {
   int index = 0;  // 1-based
   GaitParameters start;
   bool skipped = false;  // inside the basin of an optimum found earlier: not optimised
-  OptimizationResult result;  // empty when skipped; after refinement
-  int restarts = 0, retries = 0, perturbed_restarts = 0;  // of the refinement
+  OptimizationResult result;  // empty when skipped; after the restarts
+  int restarts = 0, retries = 0, perturbed_restarts = 0;  // of the restarts
 };
 
 struct GlobalSearchResult {
@@ -61,8 +61,8 @@ double scaledRmsDistance(const GaitParameters& a, const GaitParameters& b,
                          const Parameterisation& par);
 
 // `request.initial` is the centre of the random-start box; its solver settings apply to every
-// run. Same seed, same starts, same results (wall times apart): the refinement's perturbations
-// come from a second generator, so the starts do not depend on the refinement settings.
+// run. Same seed, same starts, same results (wall times apart): the restarts' perturbations
+// come from a second generator, so the starts do not depend on the restart settings.
 GlobalSearchResult globalSearch(const GaitEvaluator& evaluator, const OptimizationRequest& request,
                                 const GlobalSearchSettings& settings, std::ostream* log = nullptr);
 

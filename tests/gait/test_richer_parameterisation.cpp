@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "gaitopt/gait/refinement.hpp"
+#include "gaitopt/gait/richer_parameterisation.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "test_gait_support.hpp"
 
@@ -18,7 +18,7 @@ GaitOptions richer(int ss, int ds) {
 }
 }  // namespace
 
-TEST_CASE("parameter names and indices of a richer parameterisation", "[refine]") {
+TEST_CASE("parameter names and indices of a richer parameterisation", "[richer]") {
   const Parameterisation par = richer(3, 2).parameterisation;
   CHECK(par.size() == 17 + 8 + 4);
   const std::vector<std::string> n = par.names();
@@ -29,13 +29,13 @@ TEST_CASE("parameter names and indices of a richer parameterisation", "[refine]"
   CHECK(par.label() == "miossec+ss3+ds2");
 }
 
-TEST_CASE("refining a thesis step to a richer parameterisation keeps the motion", "[refine]") {
+TEST_CASE("refining a thesis step to a richer parameterisation keeps the motion", "[richer]") {
   const GaitEvaluator coarse = test::defaultGaitEvaluator();
   const GaitParameters p = test::optimalStep();
   const GaitEvaluation<double> e0 = coarse.evaluate(p);
   for (const auto& [ss, ds] : {std::pair{3, 0}, std::pair{1, 2}, std::pair{5, 1}}) {
     const GaitEvaluator fine = test::defaultGaitEvaluator(richer(ss, ds));
-    const GaitParameters q = refineParameters(coarse, p, fine.options().parameterisation);
+    const GaitParameters q = toRicherParameterisation(coarse, p, fine.options().parameterisation);
     REQUIRE(q.size() == fine.numParameters());
     const GaitEvaluation<double> e1 = fine.evaluate(q);
     INFO("ss_points " << ss << ", ds_points " << ds);
@@ -46,10 +46,10 @@ TEST_CASE("refining a thesis step to a richer parameterisation keeps the motion"
   }
 }
 
-TEST_CASE("exact gradients of a richer parameterisation equal finite differences", "[refine]") {
+TEST_CASE("exact gradients of a richer parameterisation equal finite differences", "[richer]") {
   const GaitEvaluator coarse = test::defaultGaitEvaluator();
   const GaitEvaluator fine = test::defaultGaitEvaluator(richer(3, 1));
-  GaitParameters q = refineParameters(coarse, test::optimalStep(), fine.options().parameterisation);
+  GaitParameters q = toRicherParameterisation(coarse, test::optimalStep(), fine.options().parameterisation);
   // Move the extra points off the coarse polynomial so the new parameters matter.
   const Parameterisation& par = fine.options().parameterisation;
   q(par.ssPointIndex(0)) += 0.02;
@@ -77,7 +77,7 @@ TEST_CASE("exact gradients of a richer parameterisation equal finite differences
   CHECK(std::abs(g.dC_Gamma(par.dsPointIndex(0))) > 1.0);
 }
 
-TEST_CASE("refinement is exact also where the swing knee hyperextends", "[refine]") {
+TEST_CASE("the richer parameterisation is exact also where the swing knee hyperextends", "[richer]") {
   // Chesse's Ipopt optimum passes through δ4 < −π during single support: a swing-foot position
   // with the human-like IK branch would give another configuration there, joint angles do not.
   const GaitFile g = loadGaitFile(test::sourcePath("configs/gait/chesse_0.85_ipopt.yaml"));
@@ -93,6 +93,6 @@ TEST_CASE("refinement is exact also where the swing knee hyperextends", "[refine
   rich.parameterisation.ds_points = 1;
   const GaitEvaluator fine(g.robot, rich, g.model_options);
   const GaitEvaluation<double> e1 =
-      fine.evaluate(refineParameters(coarse, g.parameters, rich.parameterisation));
+      fine.evaluate(toRicherParameterisation(coarse, g.parameters, rich.parameterisation));
   CHECK(e1.C_Gamma == Approx(e0.C_Gamma).epsilon(1e-9));
 }

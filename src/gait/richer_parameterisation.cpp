@@ -1,4 +1,4 @@
-#include "gaitopt/gait/refinement.hpp"
+#include "gaitopt/gait/richer_parameterisation.hpp"
 
 #include <stdexcept>
 
@@ -13,7 +13,7 @@ double trunkAngle(double alpha, double delta1, double delta2) {
 
 }  // namespace
 
-GaitParameters refineParameters(const GaitEvaluator& coarse, const GaitParameters& p,
+GaitParameters toRicherParameterisation(const GaitEvaluator& coarse, const GaitParameters& p,
                                 const Parameterisation& fine) {
   const Parameterisation& from = coarse.options().parameterisation;
   if (fine.ss_points < from.ss_points || fine.ds_points < from.ds_points ||

@@ -1,4 +1,4 @@
-// Start refinement (opt/start_refinement.hpp): a restart from an early SLSQP stop reaches the
+// Restarts of each start (opt/start_restarts.hpp): a restart from an early SLSQP stop reaches the
 // configuration's optimum; a start that did not end optimal is retried from perturbed points;
 // an early stop that a plain restart retraces is left by perturbed restarts; the perturbation
 // box is the random-start box scaled.
@@ -12,7 +12,7 @@
 #include "gaitopt/opt/initial_guess.hpp"
 #include "gaitopt/opt/optimizer.hpp"
 #include "gaitopt/opt/random_start.hpp"
-#include "gaitopt/opt/start_refinement.hpp"
+#include "gaitopt/opt/start_restarts.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -44,7 +44,7 @@ gaitopt::GaitParameters kthStart(const ConfigProblem& p, int k, std::uint64_t se
 }
 
 // The configured optimum and the staged solve (with restoration) from the k-th start of seed 1,
-// which the refine tests below pick because it stops `optimal` early.
+// which the restart tests below pick because it stops `optimal` early.
 struct EarlyStop {
   gaitopt::OptimizationResult reference;
   gaitopt::OptimizationRequest request;
@@ -62,7 +62,7 @@ EarlyStop earlyStop(const ConfigProblem& p, int k) {
 
 }  // namespace
 
-TEST_CASE("refine: the perturbation box is the random-start box scaled", "[optimize]") {
+TEST_CASE("restarts: the perturbation box is the random-start box scaled", "[optimize]") {
   const gaitopt::Parameterisation par;
   const gaitopt::GaitParameters centre = gaitopt::defaultInitialGuess(gaitopt::test::defaultModel(), std::nullopt);
   const gaitopt::GaitParameters h = gaitopt::randomStartHalfWidths(par);
@@ -81,7 +81,7 @@ TEST_CASE("refine: the perturbation box is the random-start box scaled", "[optim
   CHECK(gaitopt::randomStartBox(centre, par, 1.0).lower == full.lower);
 }
 
-TEST_CASE("refine: a restart from an early SLSQP stop reaches the optimum", "[optimize]") {
+TEST_CASE("restarts: a restart from an early SLSQP stop reaches the optimum", "[optimize]") {
   // C&A 0.75 m/s, start 1 of seed 1: the staged solve stops `optimal` 41 % above the optimum
   // (SLSQP's relative step test on a stale quasi-Newton model); restarts from that point
   // reach the optimum found from the configured start.
@@ -91,11 +91,11 @@ TEST_CASE("refine: a restart from an early SLSQP stop reaches the optimum", "[op
   REQUIRE(first.status == gaitopt::OptimizationStatus::Optimal);
   CHECK(p.criterion(first) > 1.2 * p.criterion(reference));  // stopped early without the lever
 
-  gaitopt::StartRefinementSettings s;
+  gaitopt::RestartSettings s;
   s.max_retries = 0;
   s.max_perturbed_restarts = 0;
   std::mt19937_64 rng(1);
-  const gaitopt::StartRefinement r = gaitopt::refineStart(p.evaluator, req, first, s, rng);
+  const gaitopt::RestartedStart r = gaitopt::improveByRestarts(p.evaluator, req, first, s, rng);
   CHECK(r.result.status == gaitopt::OptimizationStatus::Optimal);
   CHECK(r.retries == 0);
   CHECK(r.restarts >= 2);  // the improving restart and the one that finds nothing lower
@@ -106,12 +106,12 @@ TEST_CASE("refine: a restart from an early SLSQP stop reaches the optimum", "[op
   CHECK(r.result.wall_time_s > first.wall_time_s);
   // Without restarts the result is the first solve's.
   s.max_restarts = 0;
-  const gaitopt::StartRefinement none = gaitopt::refineStart(p.evaluator, req, first, s, rng);
+  const gaitopt::RestartedStart none = gaitopt::improveByRestarts(p.evaluator, req, first, s, rng);
   CHECK(none.restarts == 0);
   CHECK(p.criterion(none.result) == p.criterion(first));
 }
 
-TEST_CASE("refine: a start that is not optimal is retried from perturbed points", "[optimize]") {
+TEST_CASE("restarts: a start that is not optimal is retried from perturbed points", "[optimize]") {
   // A solve cut at 3 iterations per NLP ends short of the optimum; the retries (full budget)
   // from points around its last point end optimal at the default optimum. Seeded: the same
   // generator state gives the same retries.
@@ -123,27 +123,27 @@ TEST_CASE("refine: a start that is not optimal is retried from perturbed points"
   const gaitopt::OptimizationResult first = gaitopt::optimizeGait(p.evaluator, cut);
   REQUIRE(first.status != gaitopt::OptimizationStatus::Optimal);
 
-  gaitopt::StartRefinementSettings s;
+  gaitopt::RestartSettings s;
   s.max_restarts = 0;
   s.max_perturbed_restarts = 0;
   std::mt19937_64 rng(5);
-  const gaitopt::StartRefinement r = gaitopt::refineStart(p.evaluator, p.request(), first, s, rng);
+  const gaitopt::RestartedStart r = gaitopt::improveByRestarts(p.evaluator, p.request(), first, s, rng);
   CHECK(r.result.status == gaitopt::OptimizationStatus::Optimal);
   CHECK(r.retries >= 1);
   CHECK(r.retries <= s.max_retries);
   CHECK(std::abs(p.criterion(r.result) - p.criterion(reference)) <= 1e-3 * p.criterion(reference));
   std::mt19937_64 same(5);
-  const gaitopt::StartRefinement again = gaitopt::refineStart(p.evaluator, p.request(), first, s, same);
+  const gaitopt::RestartedStart again = gaitopt::improveByRestarts(p.evaluator, p.request(), first, s, same);
   CHECK(again.retries == r.retries);
   CHECK(p.criterion(again.result) == p.criterion(r.result));
   // Without retries it stays as it was.
   s.max_retries = 0;
-  const gaitopt::StartRefinement none = gaitopt::refineStart(p.evaluator, p.request(), first, s, rng);
+  const gaitopt::RestartedStart none = gaitopt::improveByRestarts(p.evaluator, p.request(), first, s, rng);
   CHECK(none.result.status == first.status);
   CHECK(none.retries == 0);
 }
 
-TEST_CASE("refine: perturbed restarts leave an early stop that a restart retraces", "[optimize]") {
+TEST_CASE("restarts: perturbed restarts leave an early stop that a restart retraces", "[optimize]") {
   // Chessé 0.85 m/s, start 3 of seed 1: the staged solve stops `optimal` at C_Γ 4454.1, 11 %
   // above the optimum, at a point that is no KKT point (active-set residual 0.26–0.71); a plain
   // restart from it retraces the same SLSQP path and finds nothing lower. The perturbed
@@ -154,10 +154,10 @@ TEST_CASE("refine: perturbed restarts leave an early stop that a restart retrace
   REQUIRE(first.status == gaitopt::OptimizationStatus::Optimal);
   CHECK(p.criterion(first) > 1.05 * p.criterion(reference));
 
-  gaitopt::StartRefinementSettings s;
+  gaitopt::RestartSettings s;
   s.max_retries = 0;
   std::mt19937_64 rng(1);
-  const gaitopt::StartRefinement r = gaitopt::refineStart(p.evaluator, req, first, s, rng);
+  const gaitopt::RestartedStart r = gaitopt::improveByRestarts(p.evaluator, req, first, s, rng);
   CHECK(r.result.status == gaitopt::OptimizationStatus::Optimal);
   CHECK(r.perturbed_restarts == s.max_perturbed_restarts);
   CHECK(std::abs(p.criterion(r.result) - p.criterion(reference)) <= 1e-3 * p.criterion(reference));
@@ -165,7 +165,7 @@ TEST_CASE("refine: perturbed restarts leave an early stop that a restart retrace
   // Without them the restarts alone stay where the first solve stopped.
   s.max_perturbed_restarts = 0;
   std::mt19937_64 same(1);
-  const gaitopt::StartRefinement plain = gaitopt::refineStart(p.evaluator, req, first, s, same);
+  const gaitopt::RestartedStart plain = gaitopt::improveByRestarts(p.evaluator, req, first, s, same);
   CHECK(plain.perturbed_restarts == 0);
   CHECK(p.criterion(plain.result) > 1.05 * p.criterion(reference));
 }

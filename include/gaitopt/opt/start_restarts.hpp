@@ -1,6 +1,6 @@
 #pragma once
-// Refinement of one start of a multi-start search (global_search.hpp), measured on the random
-// starts of the three shipped configurations (README "Start refinement"):
+// Restarts and retries of one start of a multi-start search (global_search.hpp), measured on the random
+// starts of the three shipped configurations (README "Restarts of each start"):
 // - restarts from an optimum: SLSQP's stopping test (relative change of x and f below `tol`)
 //   fires on a short step of a quasi-Newton model built across the kinks of the grid
 //   constraints, far from a KKT point (measured: active-set KKT residual up to 0.6, criteria
@@ -25,7 +25,7 @@
 
 namespace gaitopt {
 
-struct StartRefinementSettings {
+struct RestartSettings {
   int max_restarts = 4;
   double min_improvement = 1e-4;  // relative
   int max_retries = 3;
@@ -34,7 +34,7 @@ struct StartRefinementSettings {
   double optimum_perturbation = 0.1;  // fraction of randomStartHalfWidths
 };
 
-struct StartRefinement {
+struct RestartedStart {
   OptimizationResult result;  // wall time, iterations and evaluations summed over every solve
   int restarts = 0;           // restarts from an optimum that were run
   int retries = 0;            // perturbed retries of a start that was not optimal
@@ -43,8 +43,8 @@ struct StartRefinement {
 
 // `first` is the staged solve of `request` (request.initial its start); the perturbations are
 // drawn from `rng` only when a retry or a perturbed restart runs.
-StartRefinement refineStart(const GaitEvaluator& evaluator, const OptimizationRequest& request,
-                            OptimizationResult first, const StartRefinementSettings& settings,
+RestartedStart improveByRestarts(const GaitEvaluator& evaluator, const OptimizationRequest& request,
+                            OptimizationResult first, const RestartSettings& settings,
                             std::mt19937_64& rng, std::ostream* log = nullptr);
 
 }  // namespace gaitopt

@@ -9,7 +9,7 @@ namespace gaitopt {
 
 // Throws std::invalid_argument when levels 0–1 fail at p (the polynomials do not exist) or
 // when `fine` has fewer points than the coarse evaluator's parameterisation.
-GaitParameters refineParameters(const GaitEvaluator& coarse, const GaitParameters& p,
+GaitParameters toRicherParameterisation(const GaitEvaluator& coarse, const GaitParameters& p,
                                 const Parameterisation& fine);
 
 }  // namespace gaitopt

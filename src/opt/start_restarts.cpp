@@ -1,4 +1,4 @@
-#include "gaitopt/opt/start_refinement.hpp"
+#include "gaitopt/opt/start_restarts.hpp"
 
 #include "gaitopt/opt/random_start.hpp"
 
@@ -27,10 +27,10 @@ OptimizationResult solveFrom(const GaitEvaluator& ev, const OptimizationRequest&
 
 }  // namespace
 
-StartRefinement refineStart(const GaitEvaluator& ev, const OptimizationRequest& request,
-                            OptimizationResult first, const StartRefinementSettings& s,
+RestartedStart improveByRestarts(const GaitEvaluator& ev, const OptimizationRequest& request,
+                            OptimizationResult first, const RestartSettings& s,
                             std::mt19937_64& rng, std::ostream* log) {
-  StartRefinement out;
+  RestartedStart out;
   out.result = std::move(first);
   OptimizationResult& r = out.result;
   const Parameterisation& par = ev.options().parameterisation;
