@@ -27,9 +27,6 @@ ConstraintGroupSummary summarizeConstraintGroup(const ConstraintGroup& group,
                                                 double tolerance = 0.0);
 
 // max(0, max over every Defined entry): the largest violation that counts.
-// Unit of a constraint group's values ("N m", "rad", "m^2", ...).
-const char* constraintGroupUnit(int group);
-
 double maxDefinedViolation(const GaitEvaluation<double>& evaluation);
 
 // Whether T_SS, speed and alphadot_fSS were computed, i.e. the zero dynamics ran (levels 0–1
