@@ -10,6 +10,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "gaitopt/export/controller_export.hpp"
+#include "gaitopt/gait/constraints/contact.hpp"
 #include "gaitopt/io/atomic_file.hpp"
 #include "gaitopt/io/json_writer.hpp"
 #include "gaitopt/io/robot_file.hpp"
@@ -87,8 +88,8 @@ std::string trackingCsv(const WalkResult& r, double mu) {
     o << formatDouble(s.t) << ',' << s.step << ',' << (s.single_support ? "SS" : "DS");
     for (int j = 0; j < 4; ++j) o << ',' << formatDouble(s.output_error(j));
     o << ',' << formatDouble(s.R1(1)) << ',' << formatDouble(s.R2(1)) << ','
-      << formatDouble(mu * s.R1(1) - std::abs(s.R1(0))) << ','
-      << formatDouble(s.single_support ? 0.0 : mu * s.R2(1) - std::abs(s.R2(0))) << '\n';
+      << formatDouble(-frictionConeExcess(s.R1, mu)) << ','
+      << formatDouble(s.single_support ? 0.0 : -frictionConeExcess(s.R2, mu)) << '\n';
   }
   return o.str();
 }
