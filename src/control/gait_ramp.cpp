@@ -1,4 +1,4 @@
-#include "gaitopt/export/gait_ramp.hpp"
+#include "gaitopt/control/gait_ramp.hpp"
 
 #include <algorithm>
 #include <array>
