@@ -424,14 +424,15 @@ std::vector<ConstraintMaximum> sampleConstraintMaxima(const GaitEvaluator& ev,
     const TrajectoryRow& r = s.row;
     const bool ss = r.phase == Phase::SingleSupport;
     for (int j = 0; j < 4; ++j)  // (3.46), (3.47)
-      update(ss ? kTorqueSS : kTorqueDS, larger(torqueEnvelopeRows(r.gamma_star(j), r.gamma_max(j))),
-             s);
+      update(ss ? kTorqueSS : kTorqueDS,
+             larger(torqueEnvelopeRows(r.gamma_star(j), r.gamma_max(j))), s);
     const std::array<double, 4> angles = jointLimitAngles(r.q);  // (3.42)
     for (int j = 0; j < 4; ++j)
       update(ss ? kJointLimitsSS : kJointLimitsDS,
              larger(jointLimitRows(robot.limits, j, angles[j], o.joint_limit_margin)), s);
     for (const Vec2* R : ss ? std::vector<const Vec2*>{&r.R1} : std::vector{&r.R1, &r.R2}) {
-      update(ss ? kFrictionConeSS : kFrictionConeDS, frictionConeExcess(*R, o.friction_coefficient), s);
+      update(ss ? kFrictionConeSS : kFrictionConeDS, frictionConeExcess(*R, o.friction_coefficient),
+             s);
       update(ss ? kNormalForceSS : kNormalForceDS, normalForceRow(*R, o.min_normal_force), s);
     }
     const GaitMotion<double>& mo = steps[s.step].evaluation->motion;

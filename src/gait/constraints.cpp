@@ -22,7 +22,8 @@ const ConstraintGroupSpec* const kRegistry[] = {
     &kFPositiveSpec,
     &kAlphadotNegativeSpec, &kNoFallBackSpec,
     &kKappaPositiveSpec, &kDsReachMaxSpec, &kDsReachMinSpec,
-    &kTorqueSsSpec, &kJointLimitsSsSpec, &kFrictionConeSsSpec, &kNormalForceSsSpec, &kClearanceSpec,
+    &kTorqueSsSpec, &kJointLimitsSsSpec, &kFrictionConeSsSpec, &kNormalForceSsSpec,
+    &kClearanceSpec,
     &kTorqueDsSpec, &kJointLimitsDsSpec, &kFrictionConeDsSpec, &kNormalForceDsSpec, &kDsMonotoneSpec,
     &kImpactArrivalSpec, &kImpactConsistencySpec, &kImpactRateRatioSpec, &kImpactOrbitSpec,
 };
@@ -50,7 +51,8 @@ ConstraintLayout::ConstraintLayout(const GaitOptions& o) {
       case ConstraintPresence::WithoutDoubleSupport: return single ? 1 : 0;
       case ConstraintPresence::WithImpact: return impact ? 1 : 0;
       case ConstraintPresence::WithoutImpact: return impact ? 0 : 1;
-      case ConstraintPresence::ImpactSlacks: return impact ? landingImpactSlackCount(par.landing) : 0;
+      case ConstraintPresence::ImpactSlacks:
+        return impact ? landingImpactSlackCount(par.landing) : 0;
       default: return 1;
     }
   };

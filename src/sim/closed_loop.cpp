@@ -86,7 +86,8 @@ ContactLimits contactLimits(const ClosedLoop& s) {
 }
 
 Vec4 torqueLimits(const ClosedLoop& s, const Vec5& qd) {
-  return jointTorqueLimits(s.controller.robot.envelope, jointSpeeds(qd), s.options.full_torque_envelope);
+  return jointTorqueLimits(s.controller.robot.envelope, jointSpeeds(qd),
+                           s.options.full_torque_envelope);
 }
 
 // α past α_fSS over which a held reference's slope decays [rad] (≈ 20 ms at the default

@@ -109,7 +109,8 @@ template <class S> bool boundaryStage(EvalContext<S>& c) {
   }
   const double am = c.options.angle_margin;
   if (c.layout.has(kAlphaOrderDS))
-    c.set(kAlphaOrderDS, 0, alphaOrderDsRow(p(kAlphaIDS), p(kAlphaFDS), c.options.ds_alpha_range_min), D);
+    c.set(kAlphaOrderDS, 0,
+          alphaOrderDsRow(p(kAlphaIDS), p(kAlphaFDS), c.options.ds_alpha_range_min), D);
   c.set(kAlphaOrderSS, 0, alphaOrderSsRow(p(kAlphaFDS), mo.alpha_fSS, am), D);
   c.set(kTibiaFront, 0, tibiaFrontRow(p(kAlphaIDS), am), D);
   c.set(kTibiaRear, 0, tibiaRearRow(mo.alpha_fSS, am), D);

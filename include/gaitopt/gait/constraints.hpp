@@ -2,10 +2,10 @@
 // The registry of the named constraints of a walking step (§3.2.3): one table of the groups
 // defined by the family headers of gait/constraints/ (their row values, hierarchy level (Fig.
 // 3.2 as reconstructed in digest §3.8), equation, unit and scale), and their place in the flat
-// constraint vector. Every value is written g ≤ 0 when satisfied. Phase-wise (semi-infinite) constraints have one entry per node
-// of the phase's Chebyshev grid, so the optimiser sees a smooth, fixed-size set. A group a
-// gait family does not have (the DS of an impact followed by single support, the impact of
-// the thesis' landing) has count 0.
+// constraint vector. Every value is written g ≤ 0 when satisfied. Phase-wise (semi-infinite)
+// constraints have one entry per node of the phase's Chebyshev grid, so the optimiser sees a
+// smooth, fixed-size set. A group a gait family does not have (the DS of an impact followed by
+// single support, the impact of the thesis' landing) has count 0.
 #include <string>
 #include <vector>
 

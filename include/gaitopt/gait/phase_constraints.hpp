@@ -24,7 +24,8 @@ void phaseConstraintValues(const EvalContext<S>& c, int torque_group, int limits
   const std::array<S, 4> angles = jointLimitAngles(s.q);
   for (int j = 0; j < 4; ++j) {
     const std::array<S, 2> torque = torqueEnvelopeRows(S(s.gamma_star(j)), S(limit(j)));
-    const std::array<S, 2> range = jointLimitRows(r.limits, j, angles[j], c.options.joint_limit_margin);
+    const std::array<S, 2> range =
+        jointLimitRows(r.limits, j, angles[j], c.options.joint_limit_margin);
     for (int i = 0; i < 2; ++i) {
       put(torque_group, 8 * k + 2 * j + i, torque[i]);
       put(limits_group, 8 * k + 2 * j + i, range[i]);
@@ -49,7 +50,8 @@ void ssConstraintValues(const EvalContext<S>& c, int k, int n, const PhaseSample
   contactConstraintValues(c, kFrictionConeSS, kNormalForceSS, 0, 1, k, s.R1, put);
   if (k == 0 || k == n - 1) return;  // (3.49) on the open interval (gap #16)
   const S x = s.foot2(0) / c.out.motion.d;
-  put(kClearance, k - 1, clearanceRow(S(s.foot2(1)), clearanceProfile(x, c.options.clearance_height)));
+  put(kClearance, k - 1,
+      clearanceRow(S(s.foot2(1)), clearanceProfile(x, c.options.clearance_height)));
 }
 
 // The DS level-5 entries (3.42), (3.43), (3.46)–(3.48) of one sample at DS node k.

@@ -123,7 +123,8 @@ S cyclicStartRate(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts, Con
   const S r2 = squared(S(mo.f_iSS * mo.landing.rate_ratio / f_f));
   const S phi_f = mo.ss_phi(mo.ss_phi.size() - 1);
   c.set(kImpactOrbit, 0, impactOrbitRow(r2), st);
-  c.set(kAlphadotNegative, 0, alphadotCyclicRow(r2, phi_f, mo.f_iSS, c.options.alphadot_margin), st);
+  c.set(kAlphadotNegative, 0,
+        alphadotCyclicRow(r2, phi_f, mo.f_iSS, c.options.alphadot_margin), st);
   const S sigma2 = valueOf(r2) < 1.0 ? S(r2 * phi_f / (1.0 - r2)) : S(0.0);
   return valueOf(sigma2) > 0.0 ? S(-sqrt(sigma2) / mo.f_iSS) : S(0.0);
 }

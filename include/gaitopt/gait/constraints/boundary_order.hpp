@@ -24,10 +24,12 @@ template <class S> S tibiaRearRow(const S& alpha_fSS, double margin) {
   return -0.5 * M_PI - alpha_fSS + margin;
 }
 
-constexpr ConstraintGroupSpec kAlphaOrderDsSpec{"alpha_order_DS", 1, "(3.38)", "rad", dimensionlessScale,
-    ConstraintPhase::None, 1, 0, ConstraintPresence::WithDoubleSupport};
-constexpr ConstraintGroupSpec kAlphaOrderSsSpec{"alpha_order_fDS_fSS", 1, "(3.38)", "rad", dimensionlessScale};
-constexpr ConstraintGroupSpec kTibiaFrontSpec{"tibia_front", 1, "(3.40)", "rad", dimensionlessScale};
+constexpr ConstraintGroupSpec kAlphaOrderDsSpec{"alpha_order_DS", 1, "(3.38)", "rad",
+    dimensionlessScale, ConstraintPhase::None, 1, 0, ConstraintPresence::WithDoubleSupport};
+constexpr ConstraintGroupSpec kAlphaOrderSsSpec{"alpha_order_fDS_fSS", 1, "(3.38)", "rad",
+                                                dimensionlessScale};
+constexpr ConstraintGroupSpec kTibiaFrontSpec{"tibia_front", 1, "(3.40)", "rad",
+                                              dimensionlessScale};
 constexpr ConstraintGroupSpec kTibiaRearSpec{"tibia_rear", 1, "(3.40)", "rad", dimensionlessScale};
 
 }  // namespace gaitopt

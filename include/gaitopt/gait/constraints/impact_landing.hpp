@@ -25,8 +25,9 @@ template <class S> S impactOrbitRow(const S& r2) {
 constexpr const char* kImpactRateUnit = "m/s per rad/s";
 constexpr ConstraintGroupSpec kImpactArrivalSpec{"impact_arrival", 1, "(2.2)", kImpactRateUnit,
     dimensionlessScale, ConstraintPhase::None, 1, 0, ConstraintPresence::WithImpact};
-constexpr ConstraintGroupSpec kImpactConsistencySpec{"impact_consistency", 1, "(2.5), (2.9)-(2.12)",
-    kImpactRateUnit, dimensionlessScale, ConstraintPhase::None, 1, 0, ConstraintPresence::ImpactSlacks};
+constexpr ConstraintGroupSpec kImpactConsistencySpec{"impact_consistency", 1,
+    "(2.5), (2.9)-(2.12)", kImpactRateUnit, dimensionlessScale, ConstraintPhase::None, 1, 0,
+    ConstraintPresence::ImpactSlacks};
 constexpr ConstraintGroupSpec kImpactRateRatioSpec{"impact_rate_ratio", 1, "(3.23)", "1",
     dimensionlessScale, ConstraintPhase::None, 1, 0, ConstraintPresence::WithImpact};
 constexpr ConstraintGroupSpec kImpactOrbitSpec{"impact_orbit", 3, "(3.14)", "1", dimensionlessScale,
