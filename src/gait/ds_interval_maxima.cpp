@@ -9,9 +9,6 @@
 namespace gaitopt {
 namespace {
 
-constexpr int kDsMotionGroups[] = {kTorqueDS, kJointLimitsDS, kFrictionConeDS, kNormalForceDS,
-                                   kDsMonotone};
-
 // Grid coordinate of time t on a piece [a, b] (mappedNodes: s = +1 at a, −1 at b).
 double pieceCoordinate(double t, double a, double b) {
   return std::clamp(1.0 - 2.0 * (t - a) / (b - a), -1.0, 1.0);
@@ -21,9 +18,11 @@ double pieceCoordinate(double t, double a, double b) {
 
 DsIntervalMaxima::DsIntervalMaxima(const GaitEvaluator& ev) : ev_(ev) {
   const ConstraintLayout& layout = ev.layout();
-  for (int id : kDsMotionGroups)
-    for (int sub = 0; layout.has(id) && sub < layout[id].per_point; ++sub)
-      sequences_.push_back({id, sub});
+  for (int id = 0; id < kNumConstraintGroups; ++id) {
+    const ConstraintGroup& g = layout[id];
+    if (g.phase != ConstraintPhase::DoubleSupport || g.level != 5) continue;  // the DS motion's
+    for (int sub = 0; sub < g.per_point; ++sub) sequences_.push_back({id, sub});
+  }
 }
 
 int DsIntervalMaxima::entry(const Sequence& q, int k) const {

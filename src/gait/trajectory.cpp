@@ -3,9 +3,10 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "gaitopt/gait/evaluator_impl.hpp"
+#include "gaitopt/gait/constraints/clearance.hpp"
+#include "gaitopt/gait/constraints/torque_envelope.hpp"
+#include "gaitopt/gait/phase_sample.hpp"
 #include "gaitopt/model/dynamics_pinned.hpp"
-#include "gaitopt/model/torque_envelope.hpp"
 
 namespace gaitopt {
 namespace {
@@ -26,19 +27,17 @@ void addDrawingPoints(const Model& m, TrajectoryRow& r) {
 }
 
 TrajectoryRow toRow(const GaitEvaluator& ev, const GaitMotion<double>& mo, double t, Phase phase,
-                    const detail::PhaseSample<double>& s) {
+                    const PhaseSample<double>& s) {
   TrajectoryRow r = motionRow(t, phase, s);
   r.foot2 = s.foot2;
   r.com = s.com;
   const Model& m = ev.model();
   addDrawingPoints(m, r);
   r.omega = s.omega;
-  for (int j = 0; j < 4; ++j)
-    r.gamma_max(j) =
-        torqueLimit(m.robot.envelope, s.omega(j), ev.options().full_torque_envelope);
+  r.gamma_max = jointTorqueLimits(m.robot.envelope, s.omega, ev.options().full_torque_envelope);
   r.sigma = pinnedTerms(m, s.q, s.qd).A.row(0).dot(s.qd);
   const double x = s.foot2(0) / mo.d;
-  r.clearance = ev.options().clearance_height * (1.0 - x * x);  // (3.49)
+  r.clearance = clearanceProfile(x, ev.options().clearance_height);  // (3.49)
   return r;
 }
 
@@ -86,14 +85,14 @@ TrajectoryRow sampleTrajectoryAt(const GaitEvaluator& ev, const GaitEvaluation<d
   const GaitMotion<double>& mo = e.motion;
   const Model& m = ev.model();
   if (phase == Phase::DoubleSupport)
-    return toRow(ev, mo, mo.T_SS + t, phase, detail::dsSample(m, ev.options(), mo, t));
+    return toRow(ev, mo, mo.T_SS + t, phase, dsSample(m, ev.options(), mo, t));
   const double s = ssCoordinateAt(ev.ssGrid(), mo.ss_time, t);
   const double alpha = chebyshevToInterval(s, mo.alpha_iSS, mo.alpha_fSS);
   const double phi = ev.ssGrid().interpolate(mo.ss_phi, s);
-  const detail::SsPathPoint<double> pt = detail::ssPathPoint(m, mo, alpha);
+  const SsPathPoint<double> pt = ssPathPoint(m, mo, alpha);
   double ad, add;
-  detail::zeroDynamicsRates(pt, phi, mo, ev.options().f_min, ad, add);
-  TrajectoryRow row = toRow(ev, mo, t, phase, detail::ssSample(m, pt, ad, add));
+  zeroDynamicsRates(pt, phi, mo, ev.options().f_min, ad, add);
+  TrajectoryRow row = toRow(ev, mo, t, phase, ssSample(m, pt, ad, add));
   row.zd_potential = -0.5 * phi;  // Φ = σ² − σ_iSS² (3.14)
   return row;
 }

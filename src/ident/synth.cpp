@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "gaitopt/gait/evaluator.hpp"
-#include "gaitopt/gait/evaluator_impl.hpp"
+#include "gaitopt/gait/phase_sample.hpp"
 #include "gaitopt/model/dynamics_floating.hpp"
 #include "gaitopt/model/inverse_dynamics.hpp"
 #include "gaitopt/model/rocker_foot.hpp"
@@ -43,7 +43,7 @@ Vec5 toGravityFrame(Vec5 q, double slope) {
 
 TrueSample dsTrueSample(const Model& m, const GaitOptions& o, const GaitMotion<double>& mo,
                         double t, double slope) {
-  const detail::PhaseSample<double> k = detail::dsSample(m, o, mo, t);
+  const PhaseSample<double> k = dsSample(m, o, mo, t);
   const Vec5 q = toGravityFrame(k.q, slope);
   const DoubleSupportAffine<double> a = doubleSupportAffine(m, q, k.qd, k.qdd, SignMode::Smooth);
   const double r2x = a.K.dot(a.J) / a.K.squaredNorm();  // min ‖J − K R2x‖² (3.60), unbounded
@@ -112,13 +112,13 @@ struct ZeroDynamics {
   const GaitMotion<double>& mo;
   double slope;
   double foot_radius, foot_offset;
-  detail::SsPathPoint<double> point(double alpha) const {
-    return detail::ssPathPoint(m, mo, alpha);
+  SsPathPoint<double> point(double alpha) const {
+    return ssPathPoint(m, mo, alpha);
   }
-  RollingSolution rolling(const detail::SsPathPoint<double>& pt, double alphadot) const {
+  RollingSolution rolling(const SsPathPoint<double>& pt, double alphadot) const {
     return rollingFootSS(m, foot_radius, foot_offset, slope, toGravityFrame(pt.q, slope), pt.qs, pt.qss, alphadot);
   }
-  double acceleration(const detail::SsPathPoint<double>& pt, double alphadot) const {
+  double acceleration(const SsPathPoint<double>& pt, double alphadot) const {
     if (foot_radius != 0.0 || foot_offset != 0.0) return rolling(pt, alphadot).alphadd;
     const ChainState<double> st =
         chainState(m, toGravityFrame(pt.q, slope), Vec5(Vec5::Zero()));
@@ -135,7 +135,7 @@ struct ZeroDynamics {
 };
 
 TrueSample ssTrueSample(const Model& m, const ZeroDynamics& zd, const Vec2& x) {
-  const detail::SsPathPoint<double> pt = zd.point(x(0));
+  const SsPathPoint<double> pt = zd.point(x(0));
   if (zd.foot_radius != 0.0 || zd.foot_offset != 0.0) {
     const RollingSolution r = zd.rolling(pt, x(1));
     const Vec4 gamma_star = r.gamma + frictionTorque(m, jointSpeeds(r.qd), SignMode::Smooth);

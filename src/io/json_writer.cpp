@@ -5,12 +5,6 @@
 
 namespace gaitopt {
 
-std::string formatDouble(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 void JsonWriter::newline() {
   if (!pretty_) return;
   out_ += '\n';

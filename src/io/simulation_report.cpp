@@ -3,9 +3,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "gaitopt/gait/constraints/contact.hpp"
 #include "gaitopt/io/json_writer.hpp"
 #include "gaitopt/sim/cycle_convergence.hpp"
-#include "gaitopt/sim/friction_cone_margins.hpp"
 
 namespace gaitopt {
 
@@ -70,9 +70,10 @@ std::string walkTrackingCsv(const WalkResult& r, double mu) {
   for (const WalkSample& s : r.samples) {
     o << formatDouble(s.t) << ',' << s.step << ',' << (s.single_support ? "SS" : "DS");
     for (int j = 0; j < 4; ++j) o << ',' << formatDouble(s.output_error(j));
-    const Vec2 cone = frictionConeMargins(s, mu);
+    // The cone margins μ R_z − |R_x| (3.48); the swing foot's is 0.
     o << ',' << formatDouble(s.R1(1)) << ',' << formatDouble(s.R2(1)) << ','
-      << formatDouble(cone(0)) << ',' << formatDouble(cone(1)) << '\n';
+      << formatDouble(-frictionConeExcess(s.R1, mu)) << ','
+      << formatDouble(s.single_support ? 0.0 : -frictionConeExcess(s.R2, mu)) << '\n';
   }
   return o.str();
 }

@@ -13,8 +13,6 @@ namespace gaitopt {
 
 namespace {
 
-// Unit of the g values of each constraint group (g ≤ 0 when satisfied).
-
 void numberOrNull(JsonWriter& w, bool available, double v) {
   if (available && std::isfinite(v)) {
     w.value(v);
@@ -94,28 +92,6 @@ void writeBetweenNodes(JsonWriter& w, const GaitEvaluator& ev, const BetweenNode
 }
 
 }  // namespace
-
-const char* constraintGroupUnit(int id) {
-  switch (id) {
-    case kReachMaxIDS: case kReachMinIDS: case kReachMaxFDS: case kReachMinFDS:
-    case kReachMaxInt: case kReachMinInt: case kDsReachMax: case kDsReachMin:
-      return "m^2";
-    case kAlphaOrderDS: case kAlphaOrderSS: case kTibiaFront: case kTibiaRear:
-    case kJointLimitsSS: case kJointLimitsDS:
-      return "rad";
-    case kFPositive: return "kg m^2";
-    case kAlphadotNegative: case kDsMonotone: return "rad/s";
-    case kNoFallBack: return "(rad/s)^2";
-    case kKappaPositive: return "1";
-    case kTorqueSS: case kTorqueDS: return "N m";
-    case kFrictionConeSS: case kFrictionConeDS: case kNormalForceSS: case kNormalForceDS:
-      return "N";
-    case kClearance: return "m";
-    case kImpactArrival: case kImpactConsistency: return "m/s per rad/s";
-    case kImpactRateRatio: case kImpactOrbit: return "1";
-    default: return "";
-  }
-}
 
 void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitParameters& p,
                              const GaitEvaluation<double>& e) {

@@ -3,15 +3,18 @@
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 
+#include "gaitopt/gait/constraints/contact.hpp"
+#include "gaitopt/gait/constraints/torque_envelope.hpp"
 #include "gaitopt/gait/ds_force_distribution.hpp"
 #include "gaitopt/gait/leg_geometry.hpp"
 #include "gaitopt/math/small_qp.hpp"
 #include "gaitopt/model/dynamics_pinned.hpp"
 #include "gaitopt/model/forward_dynamics.hpp"
 #include "gaitopt/model/inverse_dynamics.hpp"
-#include "gaitopt/model/torque_envelope.hpp"
+#include "gaitopt/sim/control_constraints.hpp"
 #include "gaitopt/sim/ds_acceleration_bounds.hpp"
 
 namespace gaitopt {
@@ -48,14 +51,9 @@ struct ContactLimits {
 // Rows c(v) ≤ 0 of (4.51)–(4.54): torque envelope, normal forces ≥ R_min, friction cones.
 Eigen::VectorXd constraintValues(const InputResponse& r, const Vec4& limit, const ContactLimits& k,
                                  bool double_support) {
-  const double mu = k.mu;
   const Eigen::Rotation2Dd to_ground(-k.slope);
-  const Vec2 R1 = to_ground * r.R1, R2 = to_ground * r.R2;
-  Eigen::VectorXd c(double_support ? 14 : 11);
-  c << r.gamma_star - limit, -r.gamma_star - limit, k.r_min - R1(1), R1(0) - mu * R1(1),
-      -R1(0) - mu * R1(1), Eigen::VectorXd::Zero(c.size() - 11);
-  if (double_support) c.tail<3>() << k.r_min - R2(1), R2(0) - mu * R2(1), -R2(0) - mu * R2(1);
-  return c;
+  return controlConstraintRows(r.gamma_star, limit, to_ground * r.R1, to_ground * r.R2,
+                               double_support, k.mu, k.r_min);
 }
 
 struct Projected {
@@ -88,11 +86,8 @@ ContactLimits contactLimits(const ClosedLoop& s) {
 }
 
 Vec4 torqueLimits(const ClosedLoop& s, const Vec5& qd) {
-  const Vec4 omega = jointSpeeds(qd);
-  Vec4 l;
-  for (int j = 0; j < 4; ++j)
-    l(j) = torqueLimit(s.controller.robot.envelope, omega(j), s.options.full_torque_envelope);
-  return l;
+  return jointTorqueLimits(s.controller.robot.envelope, jointSpeeds(qd),
+                           s.options.full_torque_envelope);
 }
 
 // α past α_fSS over which a held reference's slope decays [rad] (≈ 20 ms at the default
@@ -362,6 +357,9 @@ void closedLoopEvents(const ClosedLoop& s, bool ss, const DsReference& ds, doubl
   const Model& p = s.plant;
   const double mu = s.options.plant_friction_coefficient;
   const double slack = kContactTolerance * p.total_mass * p.gravity;
+  // Slip: a cone row of the plant's μ above the slack (the rows negated: g > 0 while it holds).
+  const std::array<double, 2> cone1 = frictionConeRows(e.R1, mu);
+  const std::array<double, 2> cone2 = frictionConeRows(e.R2, mu);
   g.resize(kClosedLoopEvents);
   if (ss) {
     const ChainState<double> st = chainState(p, q, qd);
@@ -369,14 +367,14 @@ void closedLoopEvents(const ClosedLoop& s, bool ss, const DsReference& ds, doubl
     const bool by_height = s.options.touchdown_by_foot_height;
     const bool armed = by_height && touchdownArmed(s, q);
     g << touchdownEvent(s, q), armed ? 1.0 : foot2_z + kGroundTolerance, e.R1(1) + slack,
-        toGroundFrame(s, chainPoint(p.pinned.hip, st))(1) - kFallHipHeight, -qd(0), mu * e.R1(1) - e.R1(0) + slack,
-        mu * e.R1(1) + e.R1(0) + slack;
+        toGroundFrame(s, chainPoint(p.pinned.hip, st))(1) - kFallHipHeight, -qd(0), -cone1[1] + slack,
+        -cone1[0] + slack;
   } else {
     // DS end: T_DS elapsed (cubic control), or α reaches α_fDS (time-optimal control, §4.3.1).
     const bool optimal = s.options.ds_control == DsAlphaControl::TimeOptimal;
     g << (optimal ? q(0) - s.motion.ds_alpha(s.motion.T_DS).value : ds.t_end - t), e.R1(1) + slack,
-        e.R2(1) + slack, mu * e.R1(1) - e.R1(0) + slack, mu * e.R1(1) + e.R1(0) + slack,
-        mu * e.R2(1) - e.R2(0) + slack, mu * e.R2(1) + e.R2(0) + slack;
+        e.R2(1) + slack, -cone1[1] + slack, -cone1[0] + slack, -cone2[1] + slack,
+        -cone2[0] + slack;
   }
 }
 

@@ -3,10 +3,11 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "gaitopt/gait/boundary_geometry.hpp"
+#include "gaitopt/gait/constraints/torque_envelope.hpp"
 #include "gaitopt/gait/evaluator.hpp"
-#include "gaitopt/gait/evaluator_impl.hpp"
 #include "gaitopt/model/inverse_dynamics.hpp"
-#include "gaitopt/model/torque_envelope.hpp"
+#include "gaitopt/sim/control_constraints.hpp"
 
 namespace gaitopt {
 namespace {
@@ -26,16 +27,9 @@ Eigen::Matrix<double, kDsConstraintRows, 1> constraintValues(const Model& m, con
   const Vec5 qdd = p.qdd_alphadd * alphadd + p.qdd_bias;
   const DoubleSupportInverseDynamics<double> id =
       inverseDynamicsDS(m, p.q, p.qd, qdd, r2x, SignMode::Smooth);  // (4.8), (4.9)
-  const Vec4 omega = jointSpeeds(p.qd);
-  Vec4 limit;
-  for (int j = 0; j < 4; ++j)
-    limit(j) = torqueLimit(m.robot.envelope, omega(j), l.full_torque_envelope);
-  const double f = l.friction_coefficient, rmin = l.min_normal_force;
-  Eigen::Matrix<double, kDsConstraintRows, 1> c;
-  c << id.gamma_star - limit, -id.gamma_star - limit, rmin - id.R1(1), id.R1(0) - f * id.R1(1),
-      -id.R1(0) - f * id.R1(1), rmin - id.R2(1), id.R2(0) - f * id.R2(1),
-      -id.R2(0) - f * id.R2(1);  // (4.2)
-  return c;
+  const Vec4 limit = jointTorqueLimits(m.robot.envelope, jointSpeeds(p.qd), l.full_torque_envelope);
+  return controlConstraintRows(id.gamma_star, limit, id.R1, id.R2, true, l.friction_coefficient,
+                               l.min_normal_force);  // (4.2)
 }
 
 bool satisfies(double a, double b, double c, double x, double y) {
@@ -53,7 +47,7 @@ DsPathMotion dsPathMotion(const Model& m, const GaitMotion<double>& mo, double a
                           double alphad) {
   const PolyValue<double> d1 = mo.ds_delta1(alpha), d2 = mo.ds_delta2(alpha);
   const Vec2 leg2 =
-      leg2InverseKinematics(m, alpha, d1.value, detail::rearFootFromHip(m, alpha, d1.value, mo.d));
+      leg2InverseKinematics(m, alpha, d1.value, rearFootFromHip(m, alpha, d1.value, mo.d));
   DsPathMotion p;
   p.q << alpha, d1.value, d2.value, leg2;
   const Matrix25<double> D2 = chainPointJacobian(m, m.pinned.foot2, chainState(m, p.q, Vec5(Vec5::Zero())));

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "gaitopt/export/gait_ramp.hpp"
+#include "gaitopt/control/gait_ramp.hpp"
 #include "gaitopt/gait/evaluator.hpp"
 #include "gaitopt/gait/trajectory.hpp"
 #include "gaitopt/io/gait_file.hpp"

@@ -1,13 +1,15 @@
 #pragma once
-// The named constraints of a walking step (§3.2.3), their hierarchy level (Fig. 3.2 as
-// reconstructed in digest §3.8) and their place in the flat constraint vector. Every value is
-// written g ≤ 0 when satisfied. Phase-wise (semi-infinite) constraints have one entry per node
-// of the phase's Chebyshev grid, so the optimiser sees a smooth, fixed-size set. A group a
-// gait family does not have (the DS of an impact followed by single support, the impact of
-// the thesis' landing) has count 0.
+// The registry of the named constraints of a walking step (§3.2.3): one table of the groups
+// defined by the family headers of gait/constraints/ (their row values, hierarchy level (Fig.
+// 3.2 as reconstructed in digest §3.8), equation, unit and scale), and their place in the flat
+// constraint vector. Every value is written g ≤ 0 when satisfied. Phase-wise (semi-infinite)
+// constraints have one entry per node of the phase's Chebyshev grid, so the optimiser sees a
+// smooth, fixed-size set. A group a gait family does not have (the DS of an impact followed by
+// single support, the impact of the thesis' landing) has count 0.
 #include <string>
 #include <vector>
 
+#include "gaitopt/gait/constraints/group_spec.hpp"
 #include "gaitopt/gait/options.hpp"
 
 namespace gaitopt {
@@ -35,10 +37,6 @@ constexpr int kNumLevels = 6;
 // `gaitopt evaluate` share it (gait/feasibility.hpp).
 constexpr double kFeasibilityTolerance = 1e-6;
 
-// Phase-wise (semi-infinite) groups hold one block of per_point entries per node of their
-// phase's Chebyshev grid, from node first_point on (the clearance skips both phase ends).
-enum class ConstraintPhase : unsigned char { None, SingleSupport, DoubleSupport };
-
 struct ConstraintGroup {
   std::string name;
   int level;
@@ -50,8 +48,12 @@ struct ConstraintGroup {
   int first_point = 0;
 };
 
+// The registry's entry of a group (ConstraintGroupId).
+const ConstraintGroupSpec& constraintGroupSpec(int group);
 // Typical magnitude of a constraint group's values (the optimiser sees g / scale, O(1)).
 double constraintGroupScale(int group, const Model& model);
+// Unit of a constraint group's values ("N m", "rad", "m^2", ...).
+const char* constraintGroupUnit(int group);
 
 // State of one entry after an evaluation.
 enum class ConstraintState : unsigned char {

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "gaitopt/math/decimal.hpp"  // formatDouble, shared by every writer
+
 namespace gaitopt {
 
 class JsonWriter {
@@ -47,7 +49,5 @@ class JsonWriter {
   bool after_key_ = false;
   bool pretty_;
 };
-
-std::string formatDouble(double v);
 
 }  // namespace gaitopt

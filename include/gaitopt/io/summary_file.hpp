@@ -14,9 +14,6 @@
 
 namespace gaitopt {
 
-// Unit of a constraint group's values ("N m", "rad", "m^2", ...).
-const char* constraintGroupUnit(int group);
-
 // Writes the summary members (status, failed_level, criteria, ..., constraints,
 // max_violation, units) into the object the caller has opened on `w`.
 void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& evaluator,

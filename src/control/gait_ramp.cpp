@@ -1,4 +1,4 @@
-#include "gaitopt/export/gait_ramp.hpp"
+#include "gaitopt/control/gait_ramp.hpp"
 
 #include <algorithm>
 #include <array>
@@ -9,8 +9,14 @@
 #include <optional>
 #include <tuple>
 
-#include "gaitopt/gait/evaluator_impl.hpp"
-#include "gaitopt/io/json_writer.hpp"
+#include "gaitopt/gait/boundary_geometry.hpp"
+#include "gaitopt/gait/constraints/clearance.hpp"
+#include "gaitopt/gait/constraints/contact.hpp"
+#include "gaitopt/gait/constraints/ds_monotone.hpp"
+#include "gaitopt/gait/constraints/joint_limits.hpp"
+#include "gaitopt/gait/constraints/reach.hpp"
+#include "gaitopt/gait/constraints/torque_envelope.hpp"
+#include "gaitopt/math/decimal.hpp"
 
 namespace gaitopt {
 namespace {
@@ -111,7 +117,7 @@ constexpr double kSearchMargin = 0.02;
 
 double unitScale(const std::string& unit) {
   if (unit == "N") return 50.0;
-  if (unit == "N*m") return 10.0;
+  if (unit == "N m") return 10.0;
   if (unit == "m^2") return 0.01;
   if (unit == "m") return 0.005;
   return 0.05;  // rad, rad/s
@@ -405,45 +411,45 @@ std::vector<ConstraintMaximum> sampleConstraintMaxima(const GaitEvaluator& ev,
   const RobotParams& robot = ev.model().robot;
   const ConstraintLayout& layout = ev.layout();
   std::vector<ConstraintMaximum> out;
-  const auto update = [&](int group, const char* unit, double g, const PlannedSample& s) {
+  const auto update = [&](int group, double g, const PlannedSample& s) {
     const std::string& name = layout[group].name;
+    const char* unit = constraintGroupUnit(group);
     auto it = std::find_if(out.begin(), out.end(), [&](const auto& m) { return m.name == name; });
     if (it == out.end()) it = out.insert(out.end(), ConstraintMaximum{name, unit, g, s.t, s.step});
     if (g > it->value) *it = ConstraintMaximum{name, unit, g, s.t, s.step};
   };
+  // A pair of rows (upper, lower bound) as one value: the larger.
+  const auto larger = [](const std::array<double, 2>& rows) { return std::max(rows[0], rows[1]); };
   for (const PlannedSample& s : samples) {
     const TrajectoryRow& r = s.row;
     const bool ss = r.phase == Phase::SingleSupport;
     for (int j = 0; j < 4; ++j)  // (3.46), (3.47)
-      update(ss ? kTorqueSS : kTorqueDS, "N*m", std::abs(r.gamma_star(j)) - r.gamma_max(j), s);
-    const std::array<double, 4> angles = {r.q(1), r.q(2), r.q(2) + r.q(3), r.q(4)};  // (3.42)
-    for (int j = 0; j < 4; ++j) {
-      const bool knee = j == 0 || j == 3;
-      const double lo = knee ? robot.limits.knee_min : robot.limits.hip_min;
-      const double hi = knee ? robot.limits.knee_max : robot.limits.hip_max;
-      update(ss ? kJointLimitsSS : kJointLimitsDS, "rad",
-             std::max(angles[j] - hi, lo - angles[j]) + o.joint_limit_margin, s);
-    }
+      update(ss ? kTorqueSS : kTorqueDS,
+             larger(torqueEnvelopeRows(r.gamma_star(j), r.gamma_max(j))), s);
+    const std::array<double, 4> angles = jointLimitAngles(r.q);  // (3.42)
+    for (int j = 0; j < 4; ++j)
+      update(ss ? kJointLimitsSS : kJointLimitsDS,
+             larger(jointLimitRows(robot.limits, j, angles[j], o.joint_limit_margin)), s);
     for (const Vec2* R : ss ? std::vector<const Vec2*>{&r.R1} : std::vector{&r.R1, &r.R2}) {
-      update(ss ? kFrictionConeSS : kFrictionConeDS, "N",
-             std::abs((*R)(0)) - o.friction_coefficient * (*R)(1), s);  // (3.48)
-      update(ss ? kNormalForceSS : kNormalForceDS, "N", o.min_normal_force - (*R)(1), s);
+      update(ss ? kFrictionConeSS : kFrictionConeDS, frictionConeExcess(*R, o.friction_coefficient),
+             s);
+      update(ss ? kNormalForceSS : kNormalForceDS, normalForceRow(*R, o.min_normal_force), s);
     }
     const GaitMotion<double>& mo = steps[s.step].evaluation->motion;
     if (!ss) {  // (3.41): the rear foot within reach of the hip
-      const double L = robot.l4 + robot.l5;
-      const double rho2 = detail::rearFootFromHip(ev.model(), r.q(0), r.q(1), mo.d).squaredNorm();
-      update(kDsReachMax, "m^2", rho2 - L * L + o.reach_margin, s);
-      update(kDsReachMin, "m^2", o.reach_margin - rho2, s);
+      const double rho2 = rearFootFromHip(ev.model(), r.q(0), r.q(1), mo.d).squaredNorm();
+      const std::array<double, 2> reach = reachRows(rho2, robot.l4 + robot.l5, o.reach_margin);
+      update(kDsReachMax, reach[0], s);
+      update(kDsReachMin, reach[1], s);
     }
     if (!(r.q.allFinite() && r.gamma_star.allFinite() && r.R1.allFinite() && r.R2.allFinite()))
-      update(kDsReachMax, "m^2", std::numeric_limits<double>::infinity(), s);
+      update(kDsReachMax, std::numeric_limits<double>::infinity(), s);
     if (ss && r.t > 0.0 && r.t < mo.T_SS)  // (3.49) on the open interval, as the evaluator
-      update(kClearance, "m", r.clearance - r.foot2(1), s);
+      update(kClearance, clearanceRow(r.foot2(1), r.clearance), s);
     if (!ss) {  // (3.43); a DS starting or ending at rest holds α̇ ≤ 0 only
       const bool rest = std::abs(mo.ds_alpha(0.0).first) < 1e-12 ||
                         std::abs(mo.ds_alpha(mo.T_DS).first) < 1e-12;
-      update(kDsMonotone, "rad/s", r.qd(0) - (rest ? 0.0 : o.ds_alphadot_max), s);
+      update(kDsMonotone, dsMonotoneRow(r.qd(0), rest ? 0.0 : o.ds_alphadot_max), s);
     }
   }
   return out;

@@ -4,7 +4,7 @@
 #include <fstream>
 
 #include "gaitopt/export/controller_export.hpp"
-#include "gaitopt/export/gait_ramp.hpp"
+#include "gaitopt/control/gait_ramp.hpp"
 #include "gaitopt/math/chebyshev.hpp"
 #include "test_default_gait.hpp"
 #include "test_export_rows.hpp"
