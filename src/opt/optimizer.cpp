@@ -6,6 +6,7 @@
 
 #include "gaitopt/gait/feasibility.hpp"
 #include "gaitopt/opt/active_set_newton.hpp"
+#include "gaitopt/opt/result_order.hpp"
 
 namespace gaitopt {
 namespace {
@@ -285,10 +286,9 @@ struct Standing {
         // A step without its motion has fewer entries computed, not a smaller violation.
         violation(evaluation.motion_computed ? verdict.worst_scaled : INFINITY),
         criterion(criterionValue(evaluation, req.criterion)) {}
+  ResultRank rank() const { return {verdict.feasible, 0, violation, criterion}; }
   bool betterThan(const Standing& o) const {
-    if (verdict.feasible != o.verdict.feasible) return verdict.feasible;
-    if (!verdict.feasible && violation != o.violation) return violation < o.violation;
-    return criterion < o.criterion;
+    return betterRank(rank(), o.rank(), UnmetOrder::ViolationThenCriterion);
   }
 };
 
