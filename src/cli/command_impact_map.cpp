@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "gaitopt/impact/impact_map.hpp"
 #include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/robot_file.hpp"
 #include "impact_input.hpp"
 
@@ -35,26 +36,28 @@ std::string labels(const std::vector<ImpactBehaviour>& behaviours) {
 
 std::string mapCsv(const std::vector<ImpactMapRow>& rows) {
   std::ostringstream out;
-  out << "theta_deg,mu,behaviour,n_solutions,status\n";
-  for (const ImpactMapRow& r : rows)
-    out << shortNumber(r.theta / kDeg, "%.10g") << "," << shortNumber(r.mu, "%.10g") << ","
-        << labels(r.behaviours) << "," << r.behaviours.size() << "," << toString(r.status)
-        << "\n";
+  out << csvHeader({"theta_deg", "mu", "behaviour", "n_solutions", "status"});
+  for (const ImpactMapRow& r : rows) {
+    CsvRow row;
+    row.number(r.theta / kDeg, "%.10g").number(r.mu, "%.10g").text(labels(r.behaviours));
+    out << row.integer(r.behaviours.size()).text(toString(r.status)).line();
+  }
   return out.str();
 }
 
 std::string intervalsCsv(const Model& model, const Vec5& q, const ImpactMapRequest& req) {
   std::ostringstream out;
-  out << "mu,behaviour,theta_begin_deg,theta_end_deg\n";
+  out << csvHeader({"mu", "behaviour", "theta_begin_deg", "theta_end_deg"});
   for (int i = 0; i < req.mu_count; ++i) {
     const double mu = req.mu_count <= 1 ? req.mu_min
                                         : req.mu_min + (req.mu_max - req.mu_min) * i /
                                                            static_cast<double>(req.mu_count - 1);
     for (const ThetaInterval& iv :
-         algebraicThetaIntervals(model, q, mu, req.theta_min, req.theta_max))
-      out << shortNumber(mu, "%.10g") << "," << behaviourLabel(iv.behaviour) << ","
-          << shortNumber(iv.begin / kDeg, "%.12g") << "," << shortNumber(iv.end / kDeg, "%.12g")
-          << "\n";
+         algebraicThetaIntervals(model, q, mu, req.theta_min, req.theta_max)) {
+      CsvRow row;
+      row.number(mu, "%.10g").text(behaviourLabel(iv.behaviour));
+      out << row.number(iv.begin / kDeg, "%.12g").number(iv.end / kDeg, "%.12g").line();
+    }
   }
   return out.str();
 }

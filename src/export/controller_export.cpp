@@ -255,19 +255,19 @@ std::vector<std::pair<std::string, std::string>> exportColumns() {
 std::string exportCsv(const ExportMetadata& meta, const std::vector<ExportRow>& rows) {
   std::ostringstream out;
   for (const auto& [k, v] : meta) out << "# " << k << ": " << v << '\n';
-  std::string units;
-  std::string header;
+  CsvRow units;
+  CsvRow header;
   for (const auto& [name, unit] : exportColumns()) {
-    header += (header.empty() ? "" : ",") + name;
-    units += (units.empty() ? "" : ",") + unit;
+    header.text(name);
+    units.text(unit);
   }
-  out << "# units: " << units << '\n' << header << '\n';
+  out << "# units: " << units.line() << header.line();
   const std::vector<NumericColumn> cols = numericColumns();
   for (ExportRow r : rows) {
-    out << formatDouble(r.t) << ',' << r.step << ',' << phaseName(r.phase) << ','
-        << legName(r.stance);
-    for (const NumericColumn& c : cols) out << ',' << formatDouble(c.field(r));
-    out << '\n';
+    CsvRow row;
+    row.number(r.t).integer(r.step).text(phaseName(r.phase)).text(legName(r.stance));
+    for (const NumericColumn& c : cols) row.number(c.field(r));
+    out << row.line();
   }
   return out.str();
 }

@@ -1,10 +1,12 @@
 #include "gaitopt/io/csv_table.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 
 #include "gaitopt/io/config_error.hpp"
+#include "gaitopt/math/decimal.hpp"
 
 namespace gaitopt {
 
@@ -45,6 +47,40 @@ std::optional<double> parseDecimal(const std::string& field) {
   const double v = std::strtod(field.c_str(), &end);
   if (end != field.c_str() + field.size() || !std::isfinite(v)) return std::nullopt;
   return v;
+}
+
+std::optional<double> finiteOrAbsent(double v) {
+  return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
+}
+
+CsvRow& CsvRow::text(const std::string& field) {
+  if (!first_) line_ += kCsvSeparator;
+  first_ = false;
+  line_ += field;
+  return *this;
+}
+
+CsvRow& CsvRow::integer(long long v) { return text(std::to_string(v)); }
+
+CsvRow& CsvRow::number(double v) { return text(formatDouble(v)); }
+
+CsvRow& CsvRow::number(double v, const char* printf_format) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, printf_format, v);
+  return text(buf);
+}
+
+CsvRow& CsvRow::number(const std::optional<double>& v) { return v ? number(*v) : empty(); }
+
+CsvRow& CsvRow::texts(const std::vector<std::string>& fields) {
+  for (const std::string& f : fields) text(f);
+  return *this;
+}
+
+std::string csvHeader(std::initializer_list<const char*> names) {
+  CsvRow row;
+  for (const char* name : names) row.text(name);
+  return row.line();
 }
 
 }  // namespace gaitopt

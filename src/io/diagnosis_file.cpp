@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/json_writer.hpp"
 #include "gaitopt/io/robot_extensions.hpp"
 #include "gaitopt/io/yaml_reader.hpp"
@@ -165,21 +166,19 @@ std::string diagnosisJson(const Diagnosis& d) {
 
 std::string residualsCsv(const MeasuredData& data, const Diagnosis& d) {
   std::ostringstream out;
-  out << "t,step,phase,stance,heldout";
+  CsvRow header;
+  header.texts({"t", "step", "phase", "stance", "heldout"});
   for (const char* tag : {"nominal", "extended"})
-    for (int c = 0; c < kNumChannels; ++c) out << ',' << kChannelNames[c] << '_' << tag;
-  out << '\n';
+    for (int c = 0; c < kNumChannels; ++c) header.text(std::string(kChannelNames[c]) + '_' + tag);
+  out << header.line();
   for (std::size_t i = 0; i < data.size(); ++i) {
-    out << formatDouble(data.t[i]) << ',' << data.step[i] << ','
-        << (data.phase[i] == Phase::SingleSupport ? "SS" : "DS") << ','
-        << (data.stance[i] == Stance::Left ? "left" : "right") << ','
-        << (d.holdout_rows[i] ? 1 : 0);
+    CsvRow row;
+    row.number(data.t[i]).integer(data.step[i]);
+    row.text(data.phase[i] == Phase::SingleSupport ? "SS" : "DS");
+    row.text(data.stance[i] == Stance::Left ? "left" : "right").integer(d.holdout_rows[i] ? 1 : 0);
     for (const ResidualMatrix* r : {&d.nominal_residuals, &d.extended_residuals})
-      for (int c = 0; c < kNumChannels; ++c) {
-        const double v = (*r)(i, c);
-        out << ',' << (std::isfinite(v) ? formatDouble(v) : "");
-      }
-    out << '\n';
+      for (int c = 0; c < kNumChannels; ++c) row.number(finiteOrAbsent((*r)(i, c)));
+    out << row.line();
   }
   return out.str();
 }

@@ -177,20 +177,18 @@ MeasuredData readMeasuredCsv(const std::string& path) {
 
 std::string measuredCsv(const MeasuredData& d) {
   std::ostringstream out;
-  out << "t,alpha,delta1,delta2,delta3,delta4,phase,stance,step";
-  if (d.has_torque) out << ",gamma1,gamma2,gamma3,gamma4";
-  if (d.has_reactions) out << ",R1x,R1z,R2x,R2z";
-  out << '\n';
+  CsvRow header;
+  header.texts({"t", "alpha", "delta1", "delta2", "delta3", "delta4", "phase", "stance", "step"});
+  if (d.has_torque) header.texts({"gamma1", "gamma2", "gamma3", "gamma4"});
+  if (d.has_reactions) header.texts({"R1x", "R1z", "R2x", "R2z"});
+  out << header.line();
   for (std::size_t i = 0; i < d.size(); ++i) {
-    out << formatDouble(d.t[i]);
-    for (int k = 0; k < 5; ++k) out << ',' << formatDouble(d.q[i](k));
-    out << ',' << (d.phase[i] == Phase::SingleSupport ? "SS" : "DS") << ','
-        << (d.stance[i] == Stance::Left ? "left" : "right") << ',' << d.step[i];
-    if (d.has_torque)
-      for (int k = 0; k < 4; ++k) out << ',' << formatDouble(d.gamma[i](k));
-    if (d.has_reactions)
-      for (int k = 0; k < 4; ++k) out << ',' << formatDouble(d.reactions[i](k));
-    out << '\n';
+    CsvRow row;
+    row.number(d.t[i]).numbers(d.q[i]).text(d.phase[i] == Phase::SingleSupport ? "SS" : "DS");
+    row.text(d.stance[i] == Stance::Left ? "left" : "right").integer(d.step[i]);
+    if (d.has_torque) row.numbers(d.gamma[i]);
+    if (d.has_reactions) row.numbers(d.reactions[i]);
+    out << row.line();
   }
   return out.str();
 }

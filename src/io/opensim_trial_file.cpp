@@ -1,7 +1,6 @@
 #include "gaitopt/io/opensim_trial_file.hpp"
 
-#include <cstdio>
-
+#include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/opensim_table.hpp"
 #include "gaitopt/io/trc_file.hpp"
 
@@ -23,26 +22,17 @@ ImportedTrial importOpenSimTrial(const OpenSimImportFiles& files, const RobotPar
 }
 
 std::string importedTrialCsv(const ImportedTrial& trial) {
-  std::string out = "t,alpha,delta1,delta2,delta3,delta4,phase,stance,step,R1x,R1z,R2x,R2z\n";
-  char buf[64];
-  const auto number = [&](double v) {
-    std::snprintf(buf, sizeof buf, "%.10g", v);
-    out += buf;
-  };
+  std::string out = csvHeader({"t", "alpha", "delta1", "delta2", "delta3", "delta4", "phase",
+                               "stance", "step", "R1x", "R1z", "R2x", "R2z"});
+  const char* const format = "%.10g";
   for (Eigen::Index k = 0; k < trial.t.size(); ++k) {
-    number(trial.t(k));
-    for (int j = 0; j < 5; ++j) {
-      out += ',';
-      number(trial.q(k, j));
-    }
-    out += trial.double_support[k] ? ",DS," : ",SS,";
-    out += sideName(trial.leg1[k]);
-    out += ',' + std::to_string(trial.step[k]);
-    for (int j = 0; j < 4; ++j) {
-      out += ',';
-      number(trial.reactions(k, j));
-    }
-    out += '\n';
+    CsvRow row;
+    row.number(trial.t(k), format);
+    for (int j = 0; j < 5; ++j) row.number(trial.q(k, j), format);
+    row.text(trial.double_support[k] ? "DS" : "SS").text(sideName(trial.leg1[k]));
+    row.integer(trial.step[k]);
+    for (int j = 0; j < 4; ++j) row.number(trial.reactions(k, j), format);
+    out += row.line();
   }
   return out;
 }

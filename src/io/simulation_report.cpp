@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "gaitopt/gait/constraints/contact.hpp"
+#include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/json_writer.hpp"
 #include "gaitopt/sim/cycle_convergence.hpp"
 
@@ -41,39 +42,44 @@ std::string simulationSummaryJson(const WalkResult& r, const SimulationRun& run)
   return w.str() + "\n";
 }
 
+namespace {
+
+CsvRow walkStepRow(const WalkStep& s) {
+  CsvRow row;
+  row.integer(s.step).number(s.t_start).number(s.t_touchdown).number(s.t_liftoff);
+  row.number(s.alphad_start).number(s.max_output_error).number(s.touchdown_event_residual);
+  row.number(s.touchdown_foot_speed).number(s.energy_start).number(s.energy_touchdown);
+  row.number(s.motor_work).number(s.friction_loss).number(s.min_normal_force);
+  row.text(s.impact_behaviour).number(s.impact_energy_loss).numbers(s.impulse1).numbers(s.impulse2);
+  row.number(s.energy_end).number(s.step_motor_work).number(s.step_friction_loss);
+  row.number(stepEnergyBalanceError(s)).integer(s.saturated_samples);
+  return row.number(s.first_saturation_time);
+}
+
+}  // namespace
+
 std::string walkStepsCsv(const WalkResult& r) {
   std::ostringstream o;
-  o << "step,t_start,t_touchdown,t_liftoff,alphad_start,max_output_error,"
-       "touchdown_event_residual,touchdown_foot_speed,energy_start,energy_touchdown,motor_work,"
-       "friction_loss,min_normal_force,impact_behaviour,impact_energy_loss,impulse1_x,impulse1_z,"
-       "impulse2_x,impulse2_z,energy_end,step_motor_work,step_friction_loss,energy_balance_error,"
-       "saturated_samples,first_saturation_time\n";
-  for (const WalkStep& s : r.steps)
-    o << s.step << ',' << formatDouble(s.t_start) << ',' << formatDouble(s.t_touchdown) << ','
-      << formatDouble(s.t_liftoff) << ',' << formatDouble(s.alphad_start) << ','
-      << formatDouble(s.max_output_error) << ',' << formatDouble(s.touchdown_event_residual)
-      << ',' << formatDouble(s.touchdown_foot_speed) << ',' << formatDouble(s.energy_start)
-      << ',' << formatDouble(s.energy_touchdown) << ',' << formatDouble(s.motor_work) << ','
-      << formatDouble(s.friction_loss) << ',' << formatDouble(s.min_normal_force) << ','
-      << s.impact_behaviour << ',' << formatDouble(s.impact_energy_loss) << ','
-      << formatDouble(s.impulse1(0)) << ',' << formatDouble(s.impulse1(1)) << ','
-      << formatDouble(s.impulse2(0)) << ',' << formatDouble(s.impulse2(1)) << ','
-      << formatDouble(s.energy_end) << ',' << formatDouble(s.step_motor_work) << ','
-      << formatDouble(s.step_friction_loss) << ',' << formatDouble(stepEnergyBalanceError(s))
-      << ',' << s.saturated_samples << ',' << formatDouble(s.first_saturation_time) << '\n';
+  o << csvHeader({"step", "t_start", "t_touchdown", "t_liftoff", "alphad_start", "max_output_error",
+                  "touchdown_event_residual", "touchdown_foot_speed", "energy_start",
+                  "energy_touchdown", "motor_work", "friction_loss", "min_normal_force",
+                  "impact_behaviour", "impact_energy_loss", "impulse1_x", "impulse1_z",
+                  "impulse2_x", "impulse2_z", "energy_end", "step_motor_work", "step_friction_loss",
+                  "energy_balance_error", "saturated_samples", "first_saturation_time"});
+  for (const WalkStep& s : r.steps) o << walkStepRow(s).line();
   return o.str();
 }
 
 std::string walkTrackingCsv(const WalkResult& r, double mu) {
   std::ostringstream o;
-  o << "t,step,phase,error1,error2,error3,error4,R1z,R2z,cone_margin1,cone_margin2\n";
+  o << csvHeader({"t", "step", "phase", "error1", "error2", "error3", "error4", "R1z", "R2z",
+                  "cone_margin1", "cone_margin2"});
   for (const WalkSample& s : r.samples) {
-    o << formatDouble(s.t) << ',' << s.step << ',' << (s.single_support ? "SS" : "DS");
-    for (int j = 0; j < 4; ++j) o << ',' << formatDouble(s.output_error(j));
+    CsvRow row;
+    row.number(s.t).integer(s.step).text(s.single_support ? "SS" : "DS").numbers(s.output_error);
     // The cone margins μ R_z − |R_x| (3.48); the swing foot's is 0.
-    o << ',' << formatDouble(s.R1(1)) << ',' << formatDouble(s.R2(1)) << ','
-      << formatDouble(-frictionConeExcess(s.R1, mu)) << ','
-      << formatDouble(s.single_support ? 0.0 : -frictionConeExcess(s.R2, mu)) << '\n';
+    row.number(s.R1(1)).number(s.R2(1)).number(-frictionConeExcess(s.R1, mu));
+    o << row.number(s.single_support ? 0.0 : -frictionConeExcess(s.R2, mu)).line();
   }
   return o.str();
 }

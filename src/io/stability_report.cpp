@@ -2,9 +2,11 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 #include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/json_writer.hpp"
 
 namespace gaitopt {
@@ -12,7 +14,9 @@ namespace gaitopt {
 namespace {
 
 // An empty CSV field for NaN (no value).
-std::string csvNumber(double v) { return std::isnan(v) ? std::string() : formatDouble(v); }
+std::optional<double> csvNumber(double v) {
+  return std::isnan(v) ? std::nullopt : std::optional<double>(v);
+}
 
 void writeZeroDynamics(JsonWriter& w, const ZeroDynamicsStudy& z, int max_steps) {
   w.key("zero_dynamics").beginObject();
@@ -120,31 +124,35 @@ std::string stabilityJson(const StabilityStudy& s, const StabilityRequest& reque
 
 std::string jacobianCsv(const Eigen::MatrixXd& J) {
   std::ostringstream o;
-  o << "alpha,delta1,delta2,delta3,delta4,alphad,delta1d,delta2d,delta3d,delta4d\n";
-  for (Eigen::Index r = 0; r < J.rows(); ++r)
-    for (Eigen::Index c = 0; c < J.cols(); ++c)
-      o << formatDouble(J(r, c)) << (c + 1 < J.cols() ? ',' : '\n');
+  o << csvHeader({"alpha", "delta1", "delta2", "delta3", "delta4", "alphad", "delta1d", "delta2d",
+                  "delta3d", "delta4d"});
+  for (Eigen::Index r = 0; r < J.rows(); ++r) o << CsvRow().numbers(J.row(r)).line();
   return o.str();
 }
 
 std::string zeroDynamicsMapCsv(const ZeroDynamicsStudy& z) {
   std::ostringstream o;
-  o << "alphad_iSS,alphad_iDS,next_alphad_iSS,next_alphad_iDS,steps_to_cycle,outcome\n";
-  for (const ZeroDynamicsPoint& p : z.points)
-    o << formatDouble(p.alphad_iSS) << ',' << csvNumber(p.alphad_iDS) << ','
-      << csvNumber(p.next_alphad_iSS) << ',' << csvNumber(p.next_alphad_iDS) << ','
-      << p.steps_to_cycle << ',' << p.outcome << '\n';
+  o << csvHeader({"alphad_iSS", "alphad_iDS", "next_alphad_iSS", "next_alphad_iDS",
+                  "steps_to_cycle", "outcome"});
+  for (const ZeroDynamicsPoint& p : z.points) {
+    CsvRow row;
+    row.number(p.alphad_iSS).number(csvNumber(p.alphad_iDS));
+    row.number(csvNumber(p.next_alphad_iSS)).number(csvNumber(p.next_alphad_iDS));
+    o << row.integer(p.steps_to_cycle).text(p.outcome).line();
+  }
   return o.str();
 }
 
 std::string dsBoundsCsv(const DsZoneStudy& z) {
   std::ostringstream o;
-  o << "alphad_fDS,alphad_iDS_braking,alphad_iDS_speeding_up,a,braking_end,speeding_up_end,"
-       "cycle_exists,cycle_stable\n";
-  for (const DsZoneRow& r : z.rows)
-    o << formatDouble(r.alphad_fDS) << ',' << csvNumber(r.fastest_iDS) << ','
-      << csvNumber(r.slowest_iDS) << ',' << csvNumber(r.a) << ',' << r.braking_end << ','
-      << r.speeding_up_end << ',' << r.cycle_exists << ',' << r.cycle_stable << '\n';
+  o << csvHeader({"alphad_fDS", "alphad_iDS_braking", "alphad_iDS_speeding_up", "a", "braking_end",
+                  "speeding_up_end", "cycle_exists", "cycle_stable"});
+  for (const DsZoneRow& r : z.rows) {
+    CsvRow row;
+    row.number(r.alphad_fDS).number(csvNumber(r.fastest_iDS)).number(csvNumber(r.slowest_iDS));
+    row.number(csvNumber(r.a)).text(r.braking_end).text(r.speeding_up_end);
+    o << row.integer(r.cycle_exists).integer(r.cycle_stable).line();
+  }
   return o.str();
 }
 

@@ -29,8 +29,9 @@ double parseNumber(const std::string& field, const std::string& what, const std:
   return *v;
 }
 
-std::string field(bool available, double v) {
-  return available && std::isfinite(v) ? formatDouble(v) : "";
+// An empty field for a value not computed.
+std::optional<double> field(bool available, double v) {
+  return available ? finiteOrAbsent(v) : std::nullopt;
 }
 
 // One row of a sweep.csv, every column typed and range-checked (README, "Merging shards");
@@ -116,13 +117,13 @@ std::string sweepCsvRow(const GaitEvaluator& ev, const SweepPoint& p) {
   const GaitEvaluation<double>& e = p.result.evaluation;
   const bool criteria = e.defined() && e.motion_computed;
   const bool timing = zeroDynamicsComputed(ev, e);
-  std::ostringstream row;
-  row << formatDouble(p.speed) << ',' << p.result.status << ',' << field(criteria, e.C_Gamma) << ','
-      << field(criteria, e.C_E) << ',' << field(criteria, e.W) << ',' << field(criteria, e.C_frott)
-      << ',' << field(true, p.result.parameters[kStepLength]) << ',' << field(timing, e.T_SS) << ','
-      << field(true, p.result.parameters[kTDS]) << ',' << p.total_iterations << ','
-      << formatDouble(p.total_wall_time_s);
-  return row.str();
+  CsvRow row;
+  row.number(p.speed).text(optimizationStatusName(p.result.status));
+  row.number(field(criteria, e.C_Gamma)).number(field(criteria, e.C_E));
+  row.number(field(criteria, e.W)).number(field(criteria, e.C_frott));
+  row.number(field(true, p.result.parameters[kStepLength])).number(field(timing, e.T_SS));
+  row.number(field(true, p.result.parameters[kTDS])).integer(p.total_iterations);
+  return row.number(p.total_wall_time_s).str();
 }
 
 std::string sweepCsv(const GaitEvaluator& ev, const std::vector<SweepPoint>& points) {
