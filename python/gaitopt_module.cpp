@@ -205,7 +205,7 @@ struct Evaluation {
       d["name"] = g.name;
       d["level"] = g.level;
       d["equation"] = g.equation;
-      d["unit"] = constraintGroupUnit(id);
+      d["unit"] = g.unit;
       d["offset"] = g.offset;
       d["count"] = g.count;
       d["values"] = vectorArray(std::vector<double>(value.g.begin() + g.offset,

@@ -105,7 +105,7 @@ std::string progressText(const GaitEvaluator& ev, const GaitEvaluation<double>& 
   }
   if (worst_group < 0) return text + "  constraints hold";
   return text + "  worst " + ev.layout()[worst_group].name + " +" +
-         shortNumber(worst_value, "%.3g") + " " + constraintGroupUnit(worst_group);
+         shortNumber(worst_value, "%.3g") + " " + ev.layout()[worst_group].unit;
 }
 
 std::string elapsedAndRemaining(double elapsed_s, int done, int total) {

@@ -413,7 +413,7 @@ std::vector<ConstraintMaximum> sampleConstraintMaxima(const GaitEvaluator& ev,
   std::vector<ConstraintMaximum> out;
   const auto update = [&](int group, double g, const PlannedSample& s) {
     const std::string& name = layout[group].name;
-    const char* unit = constraintGroupUnit(group);
+    const std::string& unit = layout[group].unit;
     auto it = std::find_if(out.begin(), out.end(), [&](const auto& m) { return m.name == name; });
     if (it == out.end()) it = out.insert(out.end(), ConstraintMaximum{name, unit, g, s.t, s.step});
     if (g > it->value) *it = ConstraintMaximum{name, unit, g, s.t, s.step};

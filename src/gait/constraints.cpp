@@ -36,8 +36,6 @@ const ConstraintGroupSpec& constraintGroupSpec(int group) { return *kRegistry[gr
 
 double constraintGroupScale(int group, const Model& m) { return kRegistry[group]->scale(m); }
 
-const char* constraintGroupUnit(int group) { return kRegistry[group]->unit; }
-
 ConstraintLayout::ConstraintLayout(const GaitOptions& o) {
   const int ss = o.ss_nodes + 1;
   const Parameterisation& par = o.parameterisation;
@@ -62,7 +60,8 @@ ConstraintLayout::ConstraintLayout(const GaitOptions& o) {
                        : s.phase == ConstraintPhase::DoubleSupport ? ds
                                                                    : 1;
     const int count = s.phase == ConstraintPhase::None ? present(s.presence) : s.per_point * points;
-    groups_.push_back({s.name, s.level, s.equation, size_, count, s.phase,
+    const char* unit = single && s.unit_without_ds ? s.unit_without_ds : s.unit;
+    groups_.push_back({s.name, s.level, s.equation, size_, count, unit, s.phase,
                        points > 0 ? count / points : 0, s.first_point});
     size_ += count;
     entry_level_.insert(entry_level_.end(), count, s.level);

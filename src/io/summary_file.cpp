@@ -159,9 +159,7 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
     w.key("name").value(g.name);
     w.key("level").value(g.level);
     w.key("equation").value(g.equation);
-    // Without DS, α̇_iSS² ≥ ε² is the constraint (gait/impact_landing.hpp).
-    const bool squared = id == kAlphadotNegative && !o.parameterisation.hasDoubleSupport();
-    w.key("unit").value(squared ? "(rad/s)^2" : constraintGroupUnit(id));
+    w.key("unit").value(g.unit);
     w.key("value");
     numberOrNull(w, has_value, s.value);
     w.key("satisfied");

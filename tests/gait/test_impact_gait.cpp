@@ -264,3 +264,16 @@ TEST_CASE("the default landing is unchanged: no impact groups, entries or keys",
   CHECK(yaml.find("landing") == std::string::npos);
   CHECK(yaml.find("parameterisation") == std::string::npos);
 }
+
+TEST_CASE("the start-rate group's unit follows its row: rad/s with DS, (rad/s)^2 without",
+          "[gait][impact_gait]") {
+  // Without DS the row is the cyclic α̇_iSS² condition (alphadotCyclicRow); every consumer
+  // (summary.json, the CLI's worst-constraint line, the Python module) reads the layout's unit.
+  const GaitEvaluator single = chevallereauEvaluator(impactOptions(Landing::ImpactSingleSupport));
+  const GaitEvaluator with_ds = chevallereauEvaluator(impactOptions(Landing::ImpactDoubleSupport));
+  CHECK(single.layout()[kAlphadotNegative].unit == "(rad/s)^2");
+  CHECK(with_ds.layout()[kAlphadotNegative].unit == "rad/s");
+  CHECK(test::defaultGaitEvaluator().layout()[kAlphadotNegative].unit == "rad/s");
+  CHECK(single.layout()[kTorqueSS].unit == "N m");
+  CHECK(single.layout()[kNoFallBack].unit == "(rad/s)^2");
+}

@@ -43,6 +43,7 @@ struct ConstraintGroup {
   std::string equation;  // thesis reference
   int offset;            // first entry in the flat vector
   int count;
+  std::string unit;      // of the values g, for this gait family
   ConstraintPhase phase = ConstraintPhase::None;
   int per_point = 1;
   int first_point = 0;
@@ -52,8 +53,6 @@ struct ConstraintGroup {
 const ConstraintGroupSpec& constraintGroupSpec(int group);
 // Typical magnitude of a constraint group's values (the optimiser sees g / scale, O(1)).
 double constraintGroupScale(int group, const Model& model);
-// Unit of a constraint group's values ("N m", "rad", "m^2", ...).
-const char* constraintGroupUnit(int group);
 
 // State of one entry after an evaluation.
 enum class ConstraintState : unsigned char {

@@ -31,6 +31,7 @@ struct ConstraintGroupSpec {
   int per_point = 1;    // entries per phase node
   int first_point = 0;  // phase nodes skipped at each end
   ConstraintPresence presence = ConstraintPresence::Always;  // groups that are not phase-wise
+  const char* unit_without_ds = nullptr;  // when a step without DS has another row (else unit)
 };
 
 // Scale of the groups measured in radians, rad/s or a ratio.

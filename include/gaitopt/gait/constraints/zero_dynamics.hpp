@@ -34,8 +34,10 @@ inline double fScale(const Model&) { return 10.0; }
 
 constexpr ConstraintGroupSpec kFPositiveSpec{"f_positive", 2, "(3.45)", "kg m^2", fScale,
                                              ConstraintPhase::SingleSupport};
-constexpr ConstraintGroupSpec kAlphadotNegativeSpec{"alphadot_iSS_negative", 3, "(3.15)", "rad/s",
-                                                    dimensionlessScale};
+// Without DS the row is alphadotCyclicRow, in (rad/s)^2.
+constexpr ConstraintGroupSpec kAlphadotNegativeSpec{
+    "alphadot_iSS_negative", 3, "(3.15)", "rad/s", dimensionlessScale, ConstraintPhase::None,
+    1, 0, ConstraintPresence::Always, "(rad/s)^2"};
 constexpr ConstraintGroupSpec kNoFallBackSpec{"no_fall_back", 3, "(3.44), (3.55)", "(rad/s)^2",
                                               dimensionlessScale, ConstraintPhase::SingleSupport};
 constexpr ConstraintGroupSpec kKappaPositiveSpec{"kappa_positive", 4, "(3.23)", "1",
