@@ -32,8 +32,6 @@ static_assert(sizeof(kRegistry) / sizeof(kRegistry[0]) == kNumConstraintGroups,
 
 }  // namespace
 
-const ConstraintGroupSpec& constraintGroupSpec(int group) { return *kRegistry[group]; }
-
 double constraintGroupScale(int group, const Model& m) { return kRegistry[group]->scale(m); }
 
 ConstraintLayout::ConstraintLayout(const GaitOptions& o) {

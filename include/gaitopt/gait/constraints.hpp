@@ -49,8 +49,6 @@ struct ConstraintGroup {
   int first_point = 0;
 };
 
-// The registry's entry of a group (ConstraintGroupId).
-const ConstraintGroupSpec& constraintGroupSpec(int group);
 // Typical magnitude of a constraint group's values (the optimiser sees g / scale, O(1)).
 double constraintGroupScale(int group, const Model& model);
 
