@@ -275,9 +275,6 @@ Vec4 dsControl(const WalkingController& s, const DsReference& ds, double t, cons
   e.projection_infeasible = pr.infeasible;
   return response(pr.v).gamma_star;
 }
-// Bounds of the cubic DS's duration relative to T_DS.
-constexpr double kMinDsRange = 0.25;
-
 }  // namespace
 
 PdGains pdGains(const ControllerOptions& o) {
@@ -296,14 +293,10 @@ DsReference dsReference(const WalkingController& s, double t, const Vec5& q, con
   r.rate_scale = rate_scale;
   // Time-optimal control ends at α_fDS; t_end is then the time allowed before it counts as a
   // fall (ten planned DS durations).
-  // The cubic lasts T_DS scaled by the α range left: a touchdown before the planned α_iDS (a
-  // foot that meets the ground early) leaves a longer way to α_fDS, which T_DS would cover only
-  // with a large α̈; a late one a shorter way.
-  const double alpha_i = mo.ds_alpha(0.0).value, alpha_f = mo.ds_alpha(mo.T_DS).value;
-  const double range = std::clamp((q(0) - alpha_f) / (alpha_i - alpha_f), kMinDsRange, 1.0 / kMinDsRange);
-  r.t_end = t + (s.options.ds_control == DsAlphaControl::TimeOptimal ? 10.0 : range) * mo.T_DS;
+  r.t_end = t + (s.options.ds_control == DsAlphaControl::TimeOptimal ? 10.0 : 1.0) * mo.T_DS;
   // DS control of α: from the touchdown state to the cycle's (α_fDS, α̇_iSS) at lift-off.
-  r.alpha = cubicHermite(t, q(0), qd(0), r.t_end, alpha_f, rate_scale * mo.alphadot_iSS);
+  r.alpha = cubicHermite(t, q(0), qd(0), r.t_end, mo.ds_alpha(mo.T_DS).value,
+                         rate_scale * mo.alphadot_iSS);
   return r;
 }
 
