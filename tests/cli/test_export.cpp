@@ -44,6 +44,16 @@ TEST_CASE("gaitopt export CLI: CSV and JSON, bad input", "[export]") {
   CHECK(run.exit_code == 2);
   CHECK_THAT(run.err, Catch::Matchers::Contains("--rotor"));
   CHECK_FALSE(std::filesystem::exists(bad_rotor));
+  for (const std::string& args : std::vector<std::string>{"--format json",
+                                                         "--format json --gait " + quoted(gait),
+                                                         "--ramp"}) {
+    const std::string bad_library = dir.fresh("bad") + ".json";
+    run = runCli("export --library " + quoted(dir.dir().string()) + " " + args + " --out " +
+                 quoted(bad_library));
+    INFO(args);
+    CHECK(run.exit_code == 2);
+    CHECK_FALSE(std::filesystem::exists(bad_library));
+  }
   const std::string bad = dir.fresh("bad") + ".csv";
   run = runCli("export --gait " + quoted(gait) + " --steps 0 --out " + quoted(bad));
   CHECK(run.exit_code == 2);
