@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 struct SimulateArgs {
   std::string gait, out, plant, impact = "auto", ds_control = "cubic";
   int steps = 20;
-  double bandwidth = 40.0, sample_rate = 200.0, ground_mu = -1.0;
+  double bandwidth = 40.0, gain_scale = 1.0, sample_rate = 200.0, ground_mu = -1.0;
   bool no_torque_limits = false;
   std::vector<std::string> perturb;
 };
@@ -91,6 +91,10 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--bandwidth", args->bandwidth, "Output bandwidth omega [rad/s]")
       ->capture_default_str()
       ->check(CLI::Range(0.1, 1000.0));
+  cmd->add_option("--gain-scale", args->gain_scale,
+                  "Scales both output gains (the walker's gain_scale, docs/walking_controller.md)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.01, 100.0));
   cmd->add_option("--sample-rate", args->sample_rate, "trajectory rows [Hz]")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 1e5));
@@ -113,6 +117,7 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
     for (const std::string& p : args->perturb) applyPerturbation(p, req);
     req.steps = args->steps;
     req.bandwidth = args->bandwidth;
+    req.gain_scale = args->gain_scale;
     req.sample_rate = args->sample_rate;
     configureForGait(gait.options, req);
     if (args->ground_mu >= 0.0) req.plant_friction_coefficient = args->ground_mu;

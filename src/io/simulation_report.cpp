@@ -24,6 +24,7 @@ std::string simulationSummaryJson(const WalkResult& r, const SimulationRun& run)
   w.key("gait").value(run.gait);
   w.key("plant").value(run.plant.empty() ? std::string("gait robot") : run.plant);
   w.key("bandwidth").value(req.bandwidth);
+  w.key("gain_scale").value(req.gain_scale);
   w.key("perturbation").beginObject();
   w.key("alphad").value(req.dalphad0);
   w.key("dq").value(req.dq0);

@@ -11,6 +11,7 @@ namespace gaitopt {
 ClosedLoopOptions closedLoopOptions(const WalkRequest& r) {
   ClosedLoopOptions o;
   o.bandwidth = r.bandwidth;
+  o.gain_scale = r.gain_scale;
   o.friction_coefficient = r.friction_coefficient;
   o.plant_friction_coefficient =
       r.plant_friction_coefficient < 0.0 ? r.friction_coefficient : r.plant_friction_coefficient;

@@ -161,3 +161,31 @@ TEST_CASE("Walker torques stay within the envelope at the joints' speeds", "[con
 }
 
 }  // namespace gaitopt::test
+
+namespace gaitopt::test {
+
+TEST_CASE("Walking controller gains: gain_scale scales the PD part of the torques linearly",
+          "[control][walker]") {
+  ControllerOptions o;
+  o.gain_scale = 2.0;
+  CHECK(pdGains(o).kp == Approx(2.0 * 40.0 * 40.0));
+  CHECK(pdGains(o).kd == Approx(2.0 * 2.0 * 40.0));
+  // Without the projection Γ* is affine in v = −Kp y − Kd ẏ: Γ(g) = Γ(0) + g (Γ(1) − Γ(0)).
+  const DefaultGait g;
+  const GaitMotion<double>& mo = g.evaluation.motion;
+  Vec5 q = mo.q_iSS, qd = Vec5::Zero();
+  qd(0) = mo.alphadot_iSS;
+  q(2) += 0.05;
+  qd(4) -= 0.4;
+  const auto torques = [&](double scale) {
+    ControllerOptions c;
+    c.torque_limits = false;
+    c.gain_scale = scale;
+    return singleSupportControl({mo, g.model, c}, q, qd).gamma_star;
+  };
+  const Vec4 t0 = torques(0.0), t1 = torques(1.0), t3 = torques(3.0);
+  CHECK((t1 - t0).norm() > 1.0);  // the outputs are off: the PD part is not negligible
+  CHECK((t3 - (t0 + 3.0 * (t1 - t0))).cwiseAbs().maxCoeff() < 1e-9);
+}
+
+}  // namespace gaitopt::test

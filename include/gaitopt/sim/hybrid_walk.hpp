@@ -16,6 +16,7 @@ namespace gaitopt {
 struct WalkRequest {
   int steps = 10;
   double bandwidth = 40.0;                   // ω [rad/s] of the critically damped output dynamics
+  double gain_scale = 1.0;                   // ControllerOptions::gain_scale
   double sample_rate = 200.0;                // trajectory rows [Hz] (events are always recorded)
   double friction_coefficient = 0.8;         // of the controller's cones (gait option)
   double plant_friction_coefficient = -1.0;  // plant ground μ for slip; < 0: friction_coefficient
