@@ -58,6 +58,7 @@ struct Plant {
   int foot[2] = {}, tibia[2] = {};             // geom, body: left, right
   double foot_radius = 0.0;
   double normal[3] = {0, 0, 1}, tangent[3] = {1, 0, 0};  // floor, + along the walk
+  mutable std::vector<mjtNum> jac;                       // scratch of point Jacobians, 3 × nv
 };
 
 inline int jointId(const mjModel* m, const std::string& file, const char* name) {
@@ -164,12 +165,12 @@ class FootCollision {
 // World velocity (x, z) of a point fixed to `body`.
 inline std::array<double, 2> pointVelocity(const Plant& p, const mjData* d, const mjtNum* point,
                                     int body) {
-  std::vector<mjtNum> jac(3 * p.m->nv);
-  mj_jac(p.m, d, jac.data(), nullptr, point, body);
+  p.jac.resize(3 * p.m->nv);
+  mj_jac(p.m, d, p.jac.data(), nullptr, point, body);
   std::array<double, 2> v{0.0, 0.0};
   for (int i = 0; i < p.m->nv; ++i) {
-    v[0] += jac[i] * d->qvel[i];
-    v[1] += jac[2 * p.m->nv + i] * d->qvel[i];
+    v[0] += p.jac[i] * d->qvel[i];
+    v[1] += p.jac[2 * p.m->nv + i] * d->qvel[i];
   }
   return v;
 }
