@@ -305,7 +305,7 @@ py::dict exportGait(const std::string& gait_path, int steps, double rate,
     const Model model = buildModel(gait.robot, gait.model_options);  // the file's full friction
     const std::vector<ExportRow> rows = exportTrajectory(evaluator, e, model, req);
     const ExportMetadata meta = exportMetadata(gait, e, req);
-    json = exportJson(meta, rows, e);
+    json = exportJson(gait, model, e, meta, rows);
     if (out) writeFileAtomically(*out, format == "csv" ? exportCsv(meta, rows) : json);
   }
   py::dict result = fromJson(json);

@@ -1,4 +1,5 @@
 // `gaitopt export`: N steps of a gait for a joint-level controller, as CSV or JSON.
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -39,11 +40,11 @@ std::optional<std::vector<ExportRow>> rampedExport(const GaitEvaluator& evaluato
               << shortNumber(c.t, "%.4f") << " s (step " << c.step << ")\n";
   }
   if (!bad.empty()) return std::nullopt;
-  return exportWalk(model, samples, req.first_stance);
+  return exportWalk(evaluator, model, walk, samples, req.first_stance);
 }
 
 struct ExportArgs {
-  std::string gait, out, format = "csv", first_stance = "left", ramp_out = "stop";
+  std::string gait, out, format = "csv", first_stance = "left", ramp_out = "stop", rotor = "exact";
   int steps = 10, ramp_steps = 2;
   bool ramp = false;
   double rate = 1000.0;
@@ -72,6 +73,11 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--first-stance", args->first_stance, "Physical stance leg of step 0")
       ->capture_default_str()
       ->check(CLI::IsMember({"left", "right"}));
+  cmd->add_option("--rotor", args->rotor,
+                  "Rotor model of the feedforward: exact (1.17) or high_gear (A.1), the "
+                  "armature model of export-model's MJCF")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"exact", "high_gear"}));
   cmd->add_flag("--ramp", args->ramp,
                  "Start from standing still and end standing: ramp-in and ramp-out steps "
                  "around the N cyclic steps, every sample checked against the constraints "
@@ -105,8 +111,11 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
     req.steps = args->steps;
     req.rate = args->rate;
     req.first_stance = args->first_stance == "left" ? Leg::Left : Leg::Right;
+    req.rotor = args->rotor == "exact" ? RotorModel::Exact : RotorModel::HighGear;
     // The feedforward overcomes the robot file's whole friction, not only the optimised part.
-    const Model model = buildModel(gait.robot, gait.model_options);
+    ModelOptions feedforward = gait.model_options;
+    feedforward.rotor = req.rotor;
+    const Model model = buildModel(gait.robot, feedforward);
     req.ramp_steps = args->ramp ? args->ramp_steps : 0;
     std::vector<ExportRow> rows;
     if (args->ramp) {
@@ -122,12 +131,15 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
     }
     const ExportMetadata meta = exportMetadata(gait, e, req);
     writeFileAtomically(args->out, args->format == "csv" ? exportCsv(meta, rows)
-                                                         : exportJson(meta, rows, e));
+                                                         : exportJson(gait, model, e, meta, rows));
+    const auto events = std::count_if(rows.begin(), rows.end(), [](const ExportRow& r) {
+      return r.event != ExportEvent::None;
+    });
     std::cout << "export: " << args->steps << " steps"
               << (args->ramp ? " + ramp of " + std::to_string(args->ramp_steps) + " in/out" : "")
-              << ", " << rows.size() << " samples at "
+              << ", " << rows.size() << " rows (" << events << " at touchdown and lift-off), "
               << shortNumber(args->rate) << " Hz, speed " << shortNumber(e.speed, "%.4g")
-              << " m/s -> " << args->out << "\n";
+              << " m/s, rotor " << args->rotor << " -> " << args->out << "\n";
     exit_code = 0;
   });
 }

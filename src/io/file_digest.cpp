@@ -22,12 +22,14 @@ std::string sha256Hex(const std::string& bytes) {
   return out;
 }
 
-std::string fileSha256(const std::string& path) {
+std::string fileBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read '" + path + "' to compute its SHA-256");
+  if (!in) throw std::runtime_error("cannot read '" + path + "'");
   std::ostringstream s;
   s << in.rdbuf();
-  return sha256Hex(s.str());
+  return s.str();
 }
+
+std::string fileSha256(const std::string& path) { return sha256Hex(fileBytes(path)); }
 
 }  // namespace gaitopt

@@ -194,13 +194,12 @@ GaitOptions parseGaitOptions(const YamlMap& m, ModelOptions& model_options) {
   return o;
 }
 
-GaitFile loadGaitFile(const std::string& path) {
+GaitFile parseGaitDocument(const YamlMap& doc) {
   GaitFile g;
-  g.path = path;
-  const YamlMap doc(loadYamlFile(path), path, "");
+  g.path = doc.file();
   const std::string robot = doc.string("robot");
   if (robot.empty()) throw doc.error("robot", "must name the robot description file");
-  g.robot_path = resolveAgainstFile(path, robot);  // against the gait file's directory
+  g.robot_path = resolveAgainstFile(g.path, robot);  // against the gait file's directory
   if (const std::optional<YamlMap> options = doc.optionalMap("options")) {
     g.options = parseGaitOptions(*options, g.model_options);
   }
@@ -208,8 +207,13 @@ GaitFile loadGaitFile(const std::string& path) {
   g.parameters = parseGaitParameters(doc.map("parameters"), par);
   g.options.parameterisation = par;
   doc.rejectUnknownKeys();
+  return g;
+}
 
-  requireReadableFile(doc, "robot", "robot file", g.robot_path, robot, "gait file");
+GaitFile loadGaitFile(const std::string& path) {
+  const YamlMap doc(loadYamlFile(path), path, "");
+  GaitFile g = parseGaitDocument(doc);
+  requireReadableFile(doc, "robot", "robot file", g.robot_path, doc.string("robot"), "gait file");
   g.robot = loadRobot(g.robot_path);  // errors inside the robot file name that file
   return g;
 }

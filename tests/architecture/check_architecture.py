@@ -15,8 +15,8 @@ import sys
 
 # Bottom to top; a folder may include from folders of a strictly lower layer only.
 LAYERS = {
-    "math": 0, "model": 1, "impact": 2, "gait": 3, "opt": 4, "sim": 4,
-    "control": 5, "ident": 5, "io": 6, "export": 7, "cli": 8,
+    "math": 0, "model": 1, "impact": 2, "gait": 3, "opt": 4, "control": 4,
+    "sim": 5, "ident": 5, "io": 6, "export": 7, "cli": 8, "capi": 8,
 }
 MAX_CLI_LINES = 200
 MAX_STATUS_TEXT_COMPARES = 2

@@ -7,7 +7,9 @@
 #include <filesystem>
 
 #include "gaitopt/export/controller_export.hpp"
+#include "gaitopt/io/controller_export_file.hpp"
 #include "gaitopt/io/file_digest.hpp"
+#include "gaitopt/io/gait_file.hpp"
 #include "test_files.hpp"
 #include "test_support.hpp"
 
@@ -30,7 +32,9 @@ TEST_CASE("gaitopt export CLI: CSV and JSON, bad input", "[export]") {
   run = runCli("export --gait " + quoted(gait) + " --format json --rate 250 --out " +
                quoted(json));
   REQUIRE(run.exit_code == 0);
-  CHECK(YAML::LoadFile(json)["format"].as<std::string>() == "gaitopt controller export 1");
+  const ControllerExport back_json = readControllerExport(json);
+  CHECK(back_json.gait.robot_path == loadGaitFile(gait).robot_path);
+  CHECK(back_json.rotor == RotorModel::Exact);
   const std::string bad = dir.fresh("bad") + ".csv";
   run = runCli("export --gait " + quoted(gait) + " --steps 0 --out " + quoted(bad));
   CHECK(run.exit_code == 2);

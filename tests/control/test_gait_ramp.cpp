@@ -154,7 +154,7 @@ TEST_CASE("The default gait ramps from rest to rest, every sample within the con
   const double gait_peak = peak(sampleWalk(f.evaluator, {{gait, true}}, 1000.0));
   CHECK(peak(samples) <= 2.0 * gait_peak);
   // The export reads back to 1e-9.
-  const std::vector<ExportRow> rows = exportWalk(f.model, samples, Leg::Left);
+  const std::vector<ExportRow> rows = exportWalk(f.evaluator, f.model, walk, samples, Leg::Left);
   ExportRequest req;
   req.steps = 2;
   req.rate = 1000.0;

@@ -47,7 +47,10 @@ TEST_CASE("Export CSV reads back to 1e-9", "[export]") {
   req.first_stance = Leg::Right;
   const std::vector<ExportRow> rows = exportTrajectory(f.evaluator, f.evaluation, f.model, req);
   const double T = f.evaluation.T_SS + f.evaluation.T_DS;
-  REQUIRE(static_cast<long>(rows.size()) == static_cast<long>(std::floor(3 * T * 400)) + 1);
+  const auto fixed_rate = std::count_if(rows.begin(), rows.end(), [](const ExportRow& r) {
+    return r.event == ExportEvent::None;
+  });
+  REQUIRE(static_cast<long>(fixed_rate) == static_cast<long>(std::floor(3 * T * 400)) + 1);
   ScratchDir dir("export");
   const std::string path = dir.fresh("walk") + ".csv";
   const ExportMetadata meta = exportMetadata(f.gait, f.evaluation, req);
@@ -76,14 +79,47 @@ TEST_CASE("Export CSV reader names the row and column of a bad cell", "[export]"
                 exportTrajectory(f.evaluator, f.evaluation, f.model, req));
   const std::size_t header_end = csv.find("\nt,") + 1;
   const std::size_t row1 = csv.find('\n', header_end) + 1;
-  const std::size_t comma = csv.find(',', csv.find(',', csv.find(',', csv.find(',', row1) + 1) + 1) + 1);
-  csv.replace(comma + 1, csv.find(',', comma + 1) - comma - 1, "oops");  // alpha of row 1
+  // The cell before the (k + 1)-th comma of row 1.
+  const auto cell = [&](int k) {
+    std::size_t begin = row1;
+    for (int i = 0; i < k; ++i) begin = csv.find(',', begin) + 1;
+    return std::pair{begin, csv.find(',', begin) - begin};
+  };
   ScratchDir dir("export");
-  const std::string path = dir.fresh("bad") + ".csv";
-  std::ofstream(path) << csv;
   const int line = static_cast<int>(std::count(csv.begin(), csv.begin() + row1, '\n')) + 1;
-  requireConfigError([](const std::string& p) { readExportCsv(p); }, path, "alpha", line,
-                     "not a finite number: 'oops'");
+  for (const auto& [column, value, problem] :
+       {std::tuple{8, "oops", "not a finite number: 'oops'"},
+        {4, "3", "expected 0, 1 or 2, got '3'"}}) {
+    REQUIRE(exportColumns()[column].first == (column == 8 ? "alpha" : "event"));
+    std::string bad = csv;
+    const auto [begin, size] = cell(column);
+    bad.replace(begin, size, value);
+    const std::string path = dir.fresh("bad") + ".csv";
+    std::ofstream(path) << bad;
+    requireConfigError([](const std::string& p) { readExportCsv(p); }, path,
+                       exportColumns()[column].first, line, problem);
+  }
+}
+
+TEST_CASE("Export CSV reader refuses a file of another schema version", "[export]") {
+  const DefaultGait f;
+  ExportRequest req;
+  req.rate = 50;
+  const std::string csv = exportCsv(exportMetadata(f.gait, f.evaluation, req),
+                                    exportTrajectory(f.evaluator, f.evaluation, f.model, req));
+  const std::size_t at = csv.find("# schema_version: 2\n");
+  REQUIRE(at != std::string::npos);
+  const int header = static_cast<int>(std::count(csv.begin(), csv.begin() + csv.find("\nt,"),
+                                                 '\n')) + 2;
+  ScratchDir dir("export");
+  const std::string old = dir.fresh("v1") + ".csv";
+  std::ofstream(old) << std::string(csv).erase(at, 20);
+  requireConfigError([](const std::string& p) { readExportCsv(p); }, old, "schema_version",
+                     header - 1, "written by an older gaitopt");
+  const std::string v3 = dir.fresh("v3") + ".csv";
+  std::ofstream(v3) << std::string(csv).replace(at, 20, "# schema_version: 3\n");
+  requireConfigError([](const std::string& p) { readExportCsv(p); }, v3, "schema_version",
+                     header, "schema version 3 is not supported");
 }
 
 TEST_CASE("Export JSON polynomials reproduce the sampled motor angles to 1e-9", "[export]") {
@@ -91,8 +127,8 @@ TEST_CASE("Export JSON polynomials reproduce the sampled motor angles to 1e-9", 
   ExportRequest req;
   req.rate = 300;
   const std::vector<ExportRow> rows = exportTrajectory(f.evaluator, f.evaluation, f.model, req);
-  const YAML::Node doc = YAML::Load(exportJson(exportMetadata(f.gait, f.evaluation, req), rows,
-                                               f.evaluation));
+  const YAML::Node doc = YAML::Load(exportJson(f.gait, f.model, f.evaluation,
+                                               exportMetadata(f.gait, f.evaluation, req), rows));
   REQUIRE(doc["samples"]["t"].size() == rows.size());
   const YAML::Node ss = doc["phases"]["SS"], ds = doc["phases"]["DS"];
   const double a0 = ss["alpha_start"].as<double>(), a1 = ss["alpha_end"].as<double>();
@@ -102,8 +138,11 @@ TEST_CASE("Export JSON polynomials reproduce the sampled motor angles to 1e-9", 
   for (const ExportRow& r : rows) {
     // One step from the left leg: SS leg 1 is the left leg, DS leg 1 (front) the right one.
     REQUIRE(r.stance == (r.phase == Phase::SingleSupport ? Leg::Left : Leg::Right));
+    CHECK(r.s == Approx((r.alpha - (r.phase == Phase::SingleSupport ? a0 : b0)) /
+                        (r.phase == Phase::SingleSupport ? a1 - a0 : b1 - b0))
+                     .margin(1e-12));
     if (r.phase == Phase::SingleSupport) {
-      const double s = (r.alpha - a0) / (a1 - a0);
+      const double s = r.s;
       const char* names[] = {"phi_knee_stance", "phi_hip_stance", "phi_hip_swing",
                              "phi_knee_swing"};
       for (int j = 0; j < 4; ++j) {
@@ -116,11 +155,13 @@ TEST_CASE("Export JSON polynomials reproduce the sampled motor angles to 1e-9", 
       const double tau = (r.t - T_SS) / T_DS;
       CHECK(polynomialAt(ds["alpha_of_tau"]["monomial"], tau) == Approx(r.alpha).margin(1e-9));
       CHECK(bezierAt(ds["alpha_of_tau"]["bezier"], tau) == Approx(r.alpha).margin(1e-9));
-      const double s = (r.alpha - b0) / (b1 - b0);
+      const double s = r.s;
       // In DS the front leg is leg 1: the right leg after a left-stance SS.
       CHECK(polynomialAt(ds["outputs"]["phi_knee_front"]["monomial"], s) ==
             Approx(r.phi(3)).margin(1e-9));
       CHECK(polynomialAt(ds["outputs"]["phi_hip_front"]["monomial"], s) ==
+            Approx(r.phi(2)).margin(1e-9));
+      CHECK(bezierAt(ds["outputs"]["phi_hip_front"]["bezier"], s) ==
             Approx(r.phi(2)).margin(1e-9));
       ++ds_count;
     }

@@ -248,10 +248,12 @@ def test_export(scratch):
     e = gaitopt.evaluate(GAIT)
     path = os.path.join(scratch, "walk.csv")
     walk = gaitopt.export(GAIT, steps=3, rate=250, first_stance="right", out=path)
-    t = walk["samples"]["t"]
+    t = walk["samples"]["t"][walk["samples"]["event"] == 0]
     check(isinstance(t, np.ndarray) and len(t) == int(np.floor(3 * (e.T_SS + e.T_DS) * 250 + 1e-9)) + 1,
-          f"export(): {len(t)} samples over 3 steps of T_SS + T_DS at 250 Hz")
-    check(close(np.diff(t), 1 / 250, 1e-9), "export(): samples every 4 ms")
+          f"export(): {len(t)} fixed-rate samples over 3 steps of T_SS + T_DS at 250 Hz")
+    check(close(np.diff(t), 1 / 250, 1e-9), "export(): fixed-rate samples every 4 ms")
+    check(walk["schema_version"] == 2 and walk["feedforward"]["rotor_model"] == "exact",
+          "export(): schema 2, exact rotor model")
     stances = walk["samples"]["stance"][walk["samples"]["phase"] == "SS"]
     check(stances[0] == "right" and np.count_nonzero(stances[1:] != stances[:-1]) == 2,
           "export(): right stance first, alternating over 3 steps")

@@ -8,6 +8,9 @@ namespace gaitopt {
 // Lower-case hexadecimal SHA-256 of `bytes`.
 std::string sha256Hex(const std::string& bytes);
 
+// The file's bytes; throws std::runtime_error naming the file if unreadable.
+std::string fileBytes(const std::string& path);
+
 // SHA-256 of the file's contents; throws std::runtime_error naming the file if unreadable.
 std::string fileSha256(const std::string& path);
 

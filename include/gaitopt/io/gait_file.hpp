@@ -34,6 +34,11 @@ struct GaitFile {
 // reported by loadRobot, naming the robot file.
 GaitFile loadGaitFile(const std::string& path);
 
+// Everything of a parsed gait document but the robot, with the checks of loadGaitFile: `path`
+// is doc.file(), `robot_path` the `robot` key resolved against its directory (not checked for
+// existence), `robot` left default for the caller to load.
+GaitFile parseGaitDocument(const YamlMap& doc);
+
 // The `parameterisation` key of `doc`: absent or "miossec" (the thesis' 17 parameters), or a
 // mapping {ss_points: odd ≥ 1, ds_points: ≥ 0, basis: polynomial|bspline} of interior SS/DS
 // configurations and the curve through them (gait/path_curve.hpp); `landing`

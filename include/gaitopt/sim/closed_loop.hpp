@@ -4,17 +4,12 @@
 // maps. sim/hybrid_walk integrates them with CVODE; the Poincaré analysis (sim/poincare) can
 // linearise the same functions.
 //
-// Controller (α replacing time): in SS the four outputs y = δ − δ_d(α) of the virtual
-// constraints are driven by input–output linearisation to ÿ = −ω² y − 2ω ẏ (critically damped,
-// bandwidth ω); the zero dynamics (α) evolve freely. In DS either (α, δ1, δ2) track α_r(t), a
-// cubic to the planned lift-off state, and δ_d(α_r(t)) (DsAlphaControl::Cubic), or α̈ drives α̇
-// to the gait's cyclic curve α̇_c(α) with the outputs δ1,2 − δ_d(α) (TimeOptimal, (4.1)); the
-// fourth input R2x is the one of least Γ*ᵀΓ* within both friction cones (the 1-D QP
-// (3.68)–(3.70)). The inputs are then projected onto the torque envelope and the contact
-// constraints (4.57), (4.60) when they leave them (math/small_qp.hpp).
+// The controller is the walking controller's law (control/walking_controller.hpp); this file
+// adds the plant (pinned SS, both feet fixed in DS), the events and the touchdown maps.
 #include <functional>
 #include <string>
 
+#include "gaitopt/control/walking_controller.hpp"
 #include "gaitopt/gait/evaluation.hpp"
 #include "gaitopt/model/model.hpp"
 
@@ -32,40 +27,11 @@ enum class WalkOutcome {
 };
 const char* outcomeName(WalkOutcome o);
 
-enum class DsAlphaControl {
-  Cubic,        // α_r(t): cubic from the touchdown state to (α_fDS, α̇_iSS) over T_DS
-  TimeOptimal,  // (4.1): bang-bang at the exact α̈_min/α̈_max of the LPs (4.14) towards the
-                // cyclic curve α̇_c(α), then along it (sim/ds_acceleration_bounds.hpp); ends at α_fDS
-};
-const char* toString(DsAlphaControl c);  // cubic | time_optimal
-
-// Gain k [1/s] of the time-optimal law (4.1) near the cyclic curve: off the curve by more than
-// (α̈_max − α̈_c)/k the demanded α̈ is the exact bound of the LPs (4.14) (bang-bang); within that
-// layer it is α̈_c + k (α̇_c − α̇), the regularisation of the switch that an ODE solver needs
-// (a discontinuous right-hand side would chatter on the curve).
-constexpr double kTimeOptimalGain = 400.0;
-
-struct ClosedLoopOptions {
-  double bandwidth = 40.0;                  // ω [rad/s] of the critically damped outputs
-  double friction_coefficient = 0.8;        // controller's cones (the gait option)
+// The closed loop's options: the controller's (control/walking_controller.hpp), then the
+// plant's.
+struct ClosedLoopOptions : ControllerOptions {
   double plant_friction_coefficient = 0.8;  // plant ground: slip when |Rx| > μ Rz
-  double min_normal_force = 0.0;            // R_min [N] of the projection's normal force rows (4.2)
-  // Plant ground inclined by this angle [rad], + uphill (rising toward +x). The state stays in
-  // the world frame (gravity vertical, α from the vertical: what the controller measures, so it
-  // walks upright on its flat-ground references); foot heights and reactions are taken in the
-  // ground frame, the impact is solved there (it does not involve gravity), and the
-  // projection's friction cones and normal forces are those of the inclined ground.
-  double ground_slope = 0.0;
-  bool torque_limits = true;                // project the inputs (4.57), (4.60)
-  bool full_torque_envelope = true;         // (3.47) with its sloped parts
   bool touchdown_by_foot_height = false;    // touchdown when foot 2 reaches z = 0 (else α = α_fSS)
-  // Past α_fSS the SS references are extrapolated (impact landings) or, with this, held (C¹,
-  // their slope decaying over 0.02 rad of α): a zero-velocity landing's foot only grazes the
-  // ground at α_fSS and the extrapolated polynomials would lift it again, whereas held outputs
-  // turn the robot as one body about the stance foot and bring the swing foot down (the
-  // thesis' freeze, §4.3.1.3, made C¹).
-  bool hold_references_past_fss = false;
-  DsAlphaControl ds_control = DsAlphaControl::Cubic;
 };
 
 // The constant parts of one simulation.
@@ -76,11 +42,8 @@ struct ClosedLoop {
   ClosedLoopOptions options;
 };
 
-// The reference of one double support, set at touchdown.
-struct DsReference {
-  LocalPolynomial<double> alpha;  // α_r(t) (cubic control)
-  double t_start = 0.0, t_end = 0.0;
-};
+// The control law of the closed loop.
+WalkingController controllerOf(const ClosedLoop& s);
 DsReference dsReference(const ClosedLoop& s, double t, const Vec5& q, const Vec5& qd);
 
 // Everything the dynamics, the events and the samples need at one state.

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "gaitopt/sim/ds_acceleration_bounds.hpp"
+#include "gaitopt/control/ds_acceleration_bounds.hpp"
 
 namespace gaitopt {
 

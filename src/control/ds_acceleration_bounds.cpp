@@ -1,4 +1,4 @@
-#include "gaitopt/sim/ds_acceleration_bounds.hpp"
+#include "gaitopt/control/ds_acceleration_bounds.hpp"
 
 #include <Eigen/Dense>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include "gaitopt/gait/constraints/torque_envelope.hpp"
 #include "gaitopt/gait/evaluator.hpp"
 #include "gaitopt/model/inverse_dynamics.hpp"
-#include "gaitopt/sim/control_constraints.hpp"
+#include "gaitopt/control/control_constraints.hpp"
 
 namespace gaitopt {
 namespace {

@@ -1,4 +1,4 @@
-#include "gaitopt/sim/control_constraints.hpp"
+#include "gaitopt/control/control_constraints.hpp"
 
 #include <array>
 

@@ -1,0 +1,118 @@
+#pragma once
+// The reference walker: the walking controller's law (control/walking_controller.hpp) run on
+// the state a robot measures (trunk pitch, joint-side motor angles, foot contacts), sampled at
+// any rate ≥ 500 Hz. It keeps the phase of the walk itself: single support on the leg in
+// contact, double support from the swing foot's contact event (not from time or the phase
+// variable) until α reaches the gait's lift-off angle, and a fall when the robot leaves the
+// region the gait can recover from. The C interface (control/walker.h) wraps this class.
+#include <array>
+
+#include "gaitopt/control/walking_controller.hpp"
+#include "gaitopt/gait/evaluation.hpp"
+#include "gaitopt/gait/options.hpp"
+#include "gaitopt/model/model.hpp"
+#include "gaitopt/model/stance.hpp"
+
+namespace gaitopt {
+
+// One measurement, world frame (x forward, z up, angles counter-clockwise), physical joint order
+// knee_left, hip_left, hip_right, knee_right (model/stance.hpp).
+struct WalkerState {
+  double t = 0.0;
+  Vec2 hip = Vec2::Zero(), hip_rate = Vec2::Zero();  // the hip joint [m], [m/s]
+  double pitch = 0.0, pitch_rate = 0.0;  // trunk from the vertical, > 0 leaning backward
+  Vec4 phi = Vec4::Zero(), phi_rate = Vec4::Zero();  // joint-side motor angles φ = D_Γᵀ q
+  std::array<bool, 2> contact{false, false};        // left, right foot on the ground
+};
+
+struct WalkerOptions : ControllerOptions {
+  WalkerOptions() { ds_control = DsAlphaControl::TimeOptimal; }
+  double fall_pitch = 1.0;  // |trunk pitch| beyond which the robot is fallen [rad]
+  // A phase lasting this many times its planned duration: the phase variable stalled.
+  double stall_factor = 4.0;
+  double flight_time = 0.1;  // no foot on the ground for this long [s]: fallen
+  // The rear foot off the ground for this long [s] ends a double support early: shorter losses
+  // are the contact's chatter at the front foot's touchdown.
+  double rear_lift_time = 0.02;
+  // Time-optimal DS: lift-off once α̇ is within this fraction of its target (walker.cpp).
+  double lift_off_rate_tolerance = 0.05;
+  // Step-to-step speed regulation: after each step the relative error of its mean speed
+  // (stance foot to stance foot over the touchdown period) is summed, and the double support's
+  // target rates are scaled by 1 − speed_gain × the sum, within ±max_rate_correction: an
+  // integral action that removes the speed offset model errors leave (a rolling foot, the
+  // plant's rotor model, a slope, a heavier trunk).
+  double speed_gain = 0.2;
+  double max_rate_correction = 0.3;
+};
+
+// The controller options a gait asks for: its friction cones, normal-force margin and torque
+// envelope in the projection, references held past α_fSS for a zero-velocity landing.
+// The normal force the walker keeps on each supporting foot in its model is at least
+// kWalkerNormalForceFraction of the robot's weight: the planned double support may load the rear
+// foot with only the gait's min_normal_force (20 N on the shipped gaits), and the plant's model
+// errors (rotor model, compliant contact, rolling foot) then lift it, which leaves the double
+// support without the foot it regulates the speed with. Measured in MuJoCo on the default gait:
+// 0.3 keeps the rear foot down at gain_scale 0.5, 20 N does not.
+constexpr double kWalkerNormalForceFraction = 0.3;
+WalkerOptions walkerOptionsFor(const GaitOptions& gait, const Model& model);
+
+// The walker's view of the walk.
+enum class WalkerPhase { SingleSupport, DoubleSupport, Fallen };
+
+struct WalkerCommand {
+  Vec4 tau = Vec4::Zero();  // joint-side motor torques Γ*, physical order
+  bool fallen = false;
+  ControlOutput law;  // the law's output (leg-1 order)
+};
+
+class Walker {
+ public:
+  // `model`: the controller's model of the robot (its friction compensated); `gait` an evaluated
+  // gait (motion_computed). Throws std::invalid_argument when the gait has no motion.
+  Walker(Model model, GaitEvaluation<double> gait, const Parameterisation& parameterisation,
+         WalkerOptions options);
+
+  // The first sample of a single support on the left leg, stance foot at rest at x = 0, t = 0.
+  WalkerState initialState() const;
+  const GaitEvaluation<double>& gait() const { return gait_; }
+  const Model& model() const { return model_; }
+
+  WalkerCommand torques(const WalkerState& s);
+  WalkerPhase phase() const { return phase_; }
+  Stance leg1() const { return leg1_; }
+  int steps() const { return steps_; }  // touchdowns so far
+
+ private:
+  Model model_;
+  GaitEvaluation<double> gait_;
+  bool double_support_ = true;  // a double support follows each touchdown
+  WalkerOptions options_;
+  WalkerPhase phase_ = WalkerPhase::SingleSupport;
+  Stance leg1_ = Stance::Left;  // the stance leg in SS, the front leg in DS
+  bool started_ = false;
+  double phase_start_ = 0.0;
+  double last_contact_ = 0.0;  // time of the last sample with a foot on the ground
+  double rear_contact_ = 0.0;  // in DS: time of the last sample with the rear foot on the ground
+  double stance_x_ = 0.0, stance_t_ = 0.0;  // stance foot x [m] and its touchdown time [s]
+  double speed_error_sum_ = 0.0;             // Σ (step speed / gait speed − 1)
+  int steps_ = 0;
+  DsReference ds_;
+
+  WalkingController law() const { return {gait_.motion, model_, options_}; }
+  double phaseProgress(double alpha) const;  // s of the SS: 0 at α_iSS, 1 at α_fSS
+  void switchPhase(const WalkerState& s);
+  bool fallen(const WalkerState& s, const Vec5& q) const;
+  double stanceFootX(const WalkerState& s) const;  // world x of leg 1's foot
+  double rateScale(const WalkerState& s);          // after a touchdown: the DS's rate scale
+public:
+  double speedErrorSum() const { return speed_error_sum_; }
+};
+
+// Pinned coordinates q = (α, δ1..δ4) and rates of the measured state with `leg1` as leg 1
+// ((1.13): pitch = α + δ1 − δ2, φ = (δ1, −δ2, −(δ2 + δ3), δ4) in leg-1 order).
+void pinnedStateOf(const WalkerState& s, Stance leg1, Vec5& q, Vec5& qd);
+
+// Leg-1 joint order (knee 1, hip 1, hip 2, knee 2) ↔ physical order: an involution.
+Vec4 physicalOrder(const Vec4& leg_order, Stance leg1);
+
+}  // namespace gaitopt

@@ -1,0 +1,170 @@
+#include "gaitopt/control/walker.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "gaitopt/gait/constraints/torque_envelope.hpp"
+#include "gaitopt/model/chain_kinematics.hpp"
+#include "gaitopt/model/joint_friction.hpp"
+
+namespace gaitopt {
+namespace {
+
+int side(Stance s) { return s == Stance::Left ? 0 : 1; }
+Stance other(Stance s) { return s == Stance::Left ? Stance::Right : Stance::Left; }
+
+// A phase past this fraction of its α range: a contact of the swing foot is its touchdown
+// (before, the foot just lifted off may still touch the ground).
+constexpr double kTouchdownArmed = 0.5;
+
+}  // namespace
+
+Vec4 physicalOrder(const Vec4& v, Stance leg1) {
+  return leg1 == Stance::Left ? v : Vec4(v.reverse());
+}
+
+void pinnedStateOf(const WalkerState& s, Stance leg1, Vec5& q, Vec5& qd) {
+  const auto pinned = [](double pitch, const Vec4& phi) {
+    const double d1 = phi(0), d2 = -phi(1);
+    return Vec5(pitch - d1 + d2, d1, d2, phi(1) - phi(2), phi(3));
+  };
+  q = pinned(s.pitch, physicalOrder(s.phi, leg1));
+  qd = pinned(s.pitch_rate, physicalOrder(s.phi_rate, leg1));
+}
+
+WalkerOptions walkerOptionsFor(const GaitOptions& g, const Model& m) {
+  WalkerOptions o;
+  o.friction_coefficient = g.friction_coefficient;
+  o.min_normal_force =
+      std::max(g.min_normal_force, kWalkerNormalForceFraction * m.total_mass * m.gravity);
+  o.full_torque_envelope = g.full_torque_envelope;
+  o.hold_references_past_fss = !g.parameterisation.landsWithImpact();
+  return o;
+}
+
+Walker::Walker(Model model, GaitEvaluation<double> gait, const Parameterisation& par,
+               WalkerOptions options)
+    : model_(std::move(model)),
+      gait_(std::move(gait)),
+      double_support_(par.hasDoubleSupport()),
+      options_(options) {
+  if (!gait_.motion_computed) throw std::invalid_argument("the gait has no motion");
+}
+
+WalkerState Walker::initialState() const {
+  const GaitMotion<double>& mo = gait_.motion;
+  const Vec5 q = mo.q_iSS;
+  Vec5 qd;
+  qd(0) = mo.alphadot_iSS;
+  for (int j = 0; j < 4; ++j) qd(j + 1) = mo.ss_path[j](q(0)).first * mo.alphadot_iSS;
+  const ChainState<double> st = chainState(model_, q, qd);
+  WalkerState s;
+  s.hip = chainPoint(model_.pinned.hip, st);
+  s.hip_rate = chainPointVelocity(model_.pinned.hip, st);
+  s.pitch = q(0) + q(1) - q(2);  // θ3 − π/2 (1.13)
+  s.pitch_rate = qd(0) + qd(1) - qd(2);
+  s.phi = jointSpeeds(q);  // φ = D_Γᵀ q, linear like ω
+  s.phi_rate = jointSpeeds(qd);
+  s.contact = {true, false};
+  return s;
+}
+
+double Walker::phaseProgress(double alpha) const {
+  const GaitMotion<double>& mo = gait_.motion;
+  return (alpha - mo.q_iSS(0)) / (mo.alpha_fSS - mo.q_iSS(0));
+}
+
+// Touchdown: the swing foot's contact once the SS is past kTouchdownArmed; a double support
+// follows (leg 1 becomes the front leg) or, after an impact into single support, the next step
+// starts at once. Lift-off: α reaches the DS end α_fDS, or the rear foot leaves the ground.
+void Walker::switchPhase(const WalkerState& s) {
+  Vec5 q, qd;
+  pinnedStateOf(s, leg1_, q, qd);
+  const GaitMotion<double>& mo = gait_.motion;
+  if (phase_ == WalkerPhase::SingleSupport) {
+    if (!s.contact[side(other(leg1_))] || phaseProgress(q(0)) < kTouchdownArmed) return;
+    leg1_ = other(leg1_);
+    ++steps_;
+    phase_start_ = s.t;
+    const double scale = rateScale(s);
+    if (!double_support_) return;
+    phase_ = WalkerPhase::DoubleSupport;
+    rear_contact_ = s.t;
+    pinnedStateOf(s, leg1_, q, qd);
+    ds_ = dsReference(law(), s.t, q, qd, scale);
+    return;
+  }
+  const double alpha_end = mo.ds_alpha(mo.T_DS).value;
+  const double sigma = alpha_end < mo.ds_alpha(0.0).value ? -1.0 : 1.0;
+  if (s.contact[side(other(leg1_))]) rear_contact_ = s.t;
+  // Time-optimal control: the DS ends at α_fDS once α̇ is on the (scaled) lift-off rate, or
+  // after T_DS past α_fDS: a late touchdown (downhill) lands beyond α_fDS, and ending the DS
+  // there would skip the only phase that regulates the speed.
+  const bool past_end = sigma * (q(0) - alpha_end) >= 0.0;
+  const double target = ds_.rate_scale * mo.alphadot_iSS;
+  const bool on_rate = std::abs(qd(0) - target) <= options_.lift_off_rate_tolerance * std::abs(target);
+  const bool ended = options_.ds_control == DsAlphaControl::Cubic
+                         ? s.t >= ds_.t_end
+                         : past_end && (on_rate || s.t - phase_start_ >= mo.T_DS);
+  if (ended || s.t - rear_contact_ >= options_.rear_lift_time) {
+    phase_ = WalkerPhase::SingleSupport;
+    phase_start_ = s.t;
+  }
+}
+
+double Walker::stanceFootX(const WalkerState& s) const {
+  Vec5 q, qd;
+  pinnedStateOf(s, leg1_, q, qd);
+  return s.hip(0) - chainPoint(model_.pinned.hip, chainState(model_, q, qd))(0);
+}
+
+double Walker::rateScale(const WalkerState& s) {
+  const double x = stanceFootX(s);
+  const double speed = (x - stance_x_) / (s.t - stance_t_);
+  stance_x_ = x;
+  stance_t_ = s.t;
+  const double m = options_.max_rate_correction;
+  speed_error_sum_ = std::clamp(speed_error_sum_ + speed / gait_.speed - 1.0,
+                                -m / options_.speed_gain, m / options_.speed_gain);
+  return 1.0 - options_.speed_gain * speed_error_sum_;
+}
+
+bool Walker::fallen(const WalkerState& s, const Vec5& q) const {
+  if (std::abs(s.pitch) > options_.fall_pitch) return true;
+  if (s.t - last_contact_ > options_.flight_time) return true;
+  const GaitMotion<double>& mo = gait_.motion;
+  const double planned = phase_ == WalkerPhase::SingleSupport ? mo.T_SS : mo.T_DS;
+  const double elapsed = s.t - phase_start_;
+  if (elapsed > options_.stall_factor * planned + 0.05) return true;
+  // α running backwards past the phase's start: the robot falls back.
+  return phase_ == WalkerPhase::SingleSupport && phaseProgress(q(0)) < -0.5;
+}
+
+WalkerCommand Walker::torques(const WalkerState& s) {
+  WalkerCommand c;
+  if (!started_) {
+    started_ = true;
+    leg1_ = s.contact[0] || !s.contact[1] ? Stance::Left : Stance::Right;
+    phase_start_ = last_contact_ = stance_t_ = s.t;
+    stance_x_ = stanceFootX(s);
+  }
+  if (s.contact[0] || s.contact[1]) last_contact_ = s.t;
+  if (phase_ != WalkerPhase::Fallen) switchPhase(s);
+  Vec5 q, qd;
+  pinnedStateOf(s, leg1_, q, qd);
+  if (phase_ == WalkerPhase::Fallen || fallen(s, q)) {
+    phase_ = WalkerPhase::Fallen;
+    c.fallen = true;
+    return c;
+  }
+  c.law = phase_ == WalkerPhase::SingleSupport ? singleSupportControl(law(), q, qd)
+                                               : doubleSupportControl(law(), ds_, s.t, q, qd);
+  // The envelope at the current joint speeds holds whatever the projection could do.
+  const Vec4 limit = jointTorqueLimits(model_.robot.envelope, jointSpeeds(qd),
+                                       options_.full_torque_envelope);
+  c.tau = physicalOrder(c.law.gamma_star.cwiseMax(-limit).cwiseMin(limit), leg1_);
+  return c;
+}
+
+}  // namespace gaitopt
