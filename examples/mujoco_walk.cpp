@@ -46,10 +46,10 @@ void writeAtomically(const std::string& path, const std::string& text) {
 std::string stepsTable(const std::vector<StepStats>& steps) {
   std::ostringstream o;
   o.precision(10);
-  o << "step,stance,t_start,duration,length,speed,stance_slip\n";
+  o << "step,stance,t_start,foot_x,foot_z,duration,length,speed,stance_slip\n";
   for (const StepStats& s : steps)
-    o << s.step << ',' << kSides[s.stance] << ',' << s.t0 << ',' << s.duration << ','
-      << s.length << ',' << s.speed << ',' << s.slip << '\n';
+    o << s.step << ',' << kSides[s.stance] << ',' << s.t0 << ',' << s.foot_x << ',' << s.foot_z
+      << ',' << s.duration << ',' << s.length << ',' << s.speed << ',' << s.slip << '\n';
   return o.str();
 }
 

@@ -235,7 +235,7 @@ inline void setState(const Plant& p, mjData* d, const gaitopt_walker_state& s) {
 struct StepStats {
   int step = 0, stance = 0;
   double t0 = 0.0, duration = 0.0, length = 0.0, speed = 0.0;
-  double foot_x = 0.0;  // stance foot at the step's start
+  double foot_x = 0.0, foot_z = 0.0;  // stance foot (sphere centre) at the step's start
   double slip = 0.0;    // ∫|v_t| dt of the stance foot's contact point while in contact [m]
 };
 
@@ -275,6 +275,7 @@ class Walk {
   void start(const mjData* d) {
     current_.stance = stance_;
     current_.foot_x = footX(p_, d, stance_);
+    current_.foot_z = footZ(p_, d, stance_);
     ss_start_ = 0.0;
   }
 
@@ -323,6 +324,7 @@ class Walk {
     next.t0 = d->time;
     next.stance = foot;
     next.foot_x = footX(p_, d, foot);
+    next.foot_z = footZ(p_, d, foot);
     current_ = next;
     stance_ = foot;
     lifted_ = false;

@@ -189,6 +189,18 @@ if doc:
     ]
     for g in gaits:
         lines.append(f"| `{g}` | " + " | ".join(cell(r) for r in rows if r["gait"] == g) + " |")
+    failures = []
+    for r in rows:
+        if r["walked"] == "1":
+            continue
+        log = os.path.join(out, "cells", f"{r['gait']}__{r['case']}.log")
+        state = [l.strip() for l in open(log) if " at t = " in l] if os.path.exists(log) else []
+        what = state[0] if state else (f"speed error {float(r['speed_error_percent']):+.2f} %"
+                                       if r["reason"] == "speed_error" else r["reason"])
+        failures.append(f"- `{r['gait']}` `{r['case']}`, steps walked {r['steps']}/{steps}: {what}")
+    if failures:
+        lines += ["", "Failed cells (a fall: the reason and the state the controller was given "
+                  "then; hip in m, angles in rad, rates per s, contact left, right):", ""] + failures
     slips = [float(r["max_slip_mm"]) for r in rows if r["walked"] == "1"]
     if slips:
         lines += ["", f"Largest stance slip in a walked cell: {max(slips):.2f} mm per step."]
