@@ -11,7 +11,8 @@ gait="${1:?usage: $0 GAIT.yaml}"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 robot="$(sed -n 's/^robot: *\([^ #]*\).*/\1/p' "$gait")"
-"$gaitopt" export-model --robot "$(dirname "$gait")/$robot" --format mjcf --out "$tmp/robot.xml" >/dev/null || exit 1
+"$gaitopt" export-model --robot "$(dirname "$gait")/$robot" --format mjcf --out "$tmp/robot.xml" \
+  >/dev/null || exit 1
 "$gaitopt" export --gait "$gait" --steps 2 --format json --out "$tmp/gait.json" >/dev/null || exit 1
 
 failures=0
@@ -31,10 +32,12 @@ expect() {
   fi
 }
 
-expect missing_export "$tmp/absent.json" --model "$tmp/robot.xml" --export "$tmp/absent.json" --steps 1
+expect missing_export "$tmp/absent.json" --model "$tmp/robot.xml" --export "$tmp/absent.json" \
+  --steps 1
 expect missing_model "$tmp/absent.xml" --model "$tmp/absent.xml" --export "$tmp/gait.json" --steps 1
 expect unknown_option_key "no_such_key" --model "$tmp/robot.xml" --export "$tmp/gait.json" \
   --steps 1 --options "no_such_key: 1"
 echo "{" >"$tmp/broken.json"
-expect broken_export "$tmp/broken.json" --model "$tmp/robot.xml" --export "$tmp/broken.json" --steps 1
+expect broken_export "$tmp/broken.json" --model "$tmp/robot.xml" --export "$tmp/broken.json" \
+  --steps 1
 exit $((failures > 0))

@@ -24,7 +24,6 @@
 
 namespace mujoco_walk {
 
-
 // Bad input (exit 2): the message names the file or option and the problem.
 struct BadInput : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -35,7 +34,7 @@ inline constexpr const char* kSides[2] = {"left", "right"};
 inline constexpr double kContactForce = 1.0;     // [N] a foot is on the ground above this
 inline constexpr double kPushDuration = 0.02;    // [s]
 inline constexpr double kSpeedTolerance = 0.05;  // relative, mean speed of the last half
-inline constexpr double kHipLowFraction = 0.5;   // fall: hip below this share of its initial height
+inline constexpr double kHipLowFraction = 0.5;   // fall: hip below this share of its start height
 inline constexpr double kTrunkTipped = 1.0;      // fall: |pitch| above this [rad]
 inline constexpr double kMinSwingAir = 0.02;     // [s] in the air before a touchdown counts
 inline constexpr double kMinStepShare = 0.25;    // a touchdown lands this share of a step ahead
@@ -67,7 +66,8 @@ inline int jointId(const mjModel* m, const std::string& file, const char* name) 
   return id;
 }
 
-inline int namedId(const mjModel* m, const std::string& file, mjtObj type, const std::string& name) {
+inline int namedId(const mjModel* m, const std::string& file, mjtObj type,
+                   const std::string& name) {
   const int id = mj_name2id(m, type, name.c_str());
   if (id < 0) throw BadInput(file + ": the model has no '" + name + "'");
   return id;
@@ -83,6 +83,7 @@ inline Plant plantOf(mjModel* m, const std::string& file) {
     throw BadInput(file + ": joint 'rooty' must have the axis 0 -1 0 (pitch > 0 leaning back)");
   p.root_pitch = m->jnt_qposadr[pitch];
   if (m->nq != m->nv) throw BadInput(file + ": expected a planar tree of slides and hinges");
+  if (m->nu != 4) throw BadInput(file + ": expected 4 actuators, got " + std::to_string(m->nu));
   for (int j = 0; j < 4; ++j) {
     const int id = jointId(m, file, kJoints[j]);
     p.qpos[j] = m->jnt_qposadr[id];
@@ -128,7 +129,9 @@ inline void tiltFloor(Plant& p, double slope) {
   q[3] = 0.0;
 }
 
-inline double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline double dot3(const double* a, const double* b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 // Height of foot i's sphere above the floor (negative: penetrating).
 inline double footClearance(const Plant& p, const mjData* d, int i) {
@@ -164,7 +167,7 @@ class FootCollision {
 
 // World velocity (x, z) of a point fixed to `body`.
 inline std::array<double, 2> pointVelocity(const Plant& p, const mjData* d, const mjtNum* point,
-                                    int body) {
+                                           int body) {
   p.jac.resize(3 * p.m->nv);
   mj_jac(p.m, d, p.jac.data(), nullptr, point, body);
   std::array<double, 2> v{0.0, 0.0};
@@ -192,7 +195,7 @@ inline std::array<double, 2> footForces(const Plant& p, const mjData* d) {
 
 // The controller's view of the plant: hip = the hip joints' anchor, pitch = rooty.
 inline gaitopt_walker_state sensorState(const Plant& p, const mjData* d,
-                                 const std::array<double, 2>& force) {
+                                        const std::array<double, 2>& force) {
   gaitopt_walker_state s{};
   s.t = d->time;
   const mjtNum* hip = d->xanchor + 3 * p.hip_joint;
@@ -256,8 +259,12 @@ inline double slipVelocity(const Plant& p, const mjData* d, int i) {
   return v[0] * p.tangent[0] + v[1] * p.tangent[2];
 }
 
-inline double footX(const Plant& p, const mjData* d, int i) { return d->geom_xpos[3 * p.foot[i]]; }
-inline double footZ(const Plant& p, const mjData* d, int i) { return d->geom_xpos[3 * p.foot[i] + 2]; }
+inline double footX(const Plant& p, const mjData* d, int i) {
+  return d->geom_xpos[3 * p.foot[i]];
+}
+inline double footZ(const Plant& p, const mjData* d, int i) {
+  return d->geom_xpos[3 * p.foot[i] + 2];
+}
 
 // Walk bookkeeping: touchdowns, steps, the push, the fall checks.
 class Walk {

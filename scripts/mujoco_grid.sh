@@ -64,16 +64,17 @@ while [ "$#" -gt 0 ]; do
     *) gaits+=("$1"); full=0; shift ;;
   esac
 done
-[[ "$steps" =~ ^[1-9][0-9]*$ ]] || { echo "mujoco_grid: --steps: a positive integer, got '$steps'" >&2; exit 2; }
-[[ "$jobs" =~ ^[1-9][0-9]*$ ]] || { echo "mujoco_grid: --jobs: a positive integer, got '$jobs'" >&2; exit 2; }
+bad() { echo "mujoco_grid: $*" >&2; exit 2; }
+[[ "$steps" =~ ^[1-9][0-9]*$ ]] || bad "--steps: a positive integer, got '$steps'"
+[[ "$jobs" =~ ^[1-9][0-9]*$ ]] || bad "--jobs: a positive integer, got '$jobs'"
 for c in "${cases[@]}"; do
-  [ -n "${case_args[$c]+set}" ] || { echo "mujoco_grid: --cases: unknown case '$c' (known: ${all_cases[*]})" >&2; exit 2; }
+  [ -n "${case_args[$c]+set}" ] || bad "--cases: unknown case '$c' (known: ${all_cases[*]})"
 done
 if [ "${#gaits[@]}" -eq 0 ]; then
   for g in "${shipped_gaits[@]}"; do gaits+=("$root/$g"); done
 fi
 for exe in "$gaitopt" "$walk"; do
-  [ -x "$exe" ] || { echo "mujoco_grid: $exe is not built" >&2; exit 2; }
+  [ -x "$exe" ] || bad "$exe is not built"
 done
 
 tmp="$(mktemp -d)"
@@ -106,8 +107,8 @@ for gait in "${gaits[@]}"; do
   if [ "$status" != 0 ]; then
     echo "mujoco_grid: $gait: the export failed (exit $status, $log): its cells fail"
     for c in "${cases[@]}"; do
-      printf 'walked,steps,mean_speed_last_half,speed_error_percent,max_slip_mm,reason,t_end\n0,0,,,,export_failed,\n' \
-        >"$out/cells/${name}__$c.csv"
+      printf '%s\n%s\n' "walked,steps,mean_speed_last_half,speed_error_percent,max_slip_mm,reason" \
+        "0,0,,,,export_failed" >"$out/cells/${name}__$c.csv"
     done
     continue
   fi
@@ -127,7 +128,9 @@ export tmp out steps walk
 export case_args_def="$(declare -p case_args)"
 # Each xargs worker is a fresh bash: it gets the case table through case_args_def.
 xargs -r -P "$jobs" -L 1 bash -c 'eval "$case_args_def"; run_cell "$@"' _ <"$tmp/cells.txt" |
-  while read -r status name case line; do printf '%-40s %-16s exit %s  %s\n' "$name" "$case" "$status" "$line"; done
+  while read -r status name case line; do
+    printf '%-40s %-16s exit %s  %s\n' "$name" "$case" "$status" "$line"
+  done
 
 publish=""
 [ "$full" = 1 ] && publish="$doc"
@@ -200,12 +203,14 @@ if doc:
         failures.append(f"- `{r['gait']}` `{r['case']}`, steps walked {r['steps']}/{steps}: {what}")
     if failures:
         lines += ["", "Failed cells (a fall: the reason and the state the controller was given "
-                  "then; hip in m, angles in rad, rates per s, contact left, right):", ""] + failures
+                  "then; hip in m, angles in rad, rates per s, contact left, right):",
+                  ""] + failures
     slips = [float(r["max_slip_mm"]) for r in rows if r["walked"] == "1"]
     if slips:
         lines += ["", f"Largest stance slip in a walked cell: {max(slips):.2f} mm per step."]
     if absent:
-        lines += ["", "Not run (gait file absent): " + ", ".join(f"`{g}.yaml`" for g in absent) + "."]
+        lines += ["", "Not run (gait file absent): "
+                  + ", ".join(f"`{g}.yaml`" for g in absent) + "."]
     begin, end = "<!-- mujoco-grid: begin -->", "<!-- mujoco-grid: end -->"
     text = open(doc).read()
     i, j = text.index(begin) + len(begin), text.index(end)
