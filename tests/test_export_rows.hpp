@@ -2,7 +2,10 @@
 // Comparison of exported rows (controller export and ramp round trips).
 #include <catch2/catch.hpp>
 
+#include <yaml-cpp/yaml.h>
+
 #include "gaitopt/export/controller_export.hpp"
+#include "test_default_gait.hpp"
 
 namespace gaitopt::test {
 
@@ -29,6 +32,22 @@ inline void requireRowsEqual(const ExportRow& a, const ExportRow& b, double tol)
   for (const auto& [x, y] : {std::pair{a.foot_left, b.foot_left}, {a.foot_right, b.foot_right},
                              {a.R_left, b.R_left}, {a.R_right, b.R_right}})
     CHECK((x - y).lpNorm<Eigen::Infinity>() <= tol);
+}
+
+// One step of a shipped gait exported at `rate`: the rows and the JSON document read back.
+struct ExportedJson {
+  std::vector<ExportRow> rows;
+  YAML::Node doc;
+};
+
+inline ExportedJson exportedJson(const ShippedGait& f, double rate) {
+  ExportRequest req;
+  req.rate = rate;
+  ExportedJson out;
+  out.rows = exportTrajectory(f.evaluator, f.evaluation, f.model, req);
+  out.doc = YAML::Load(exportJson(f.gait, f.model, f.evaluation,
+                                  exportMetadata(f.gait, f.evaluation, req), out.rows));
+  return out;
 }
 
 }  // namespace gaitopt::test

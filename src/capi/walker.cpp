@@ -139,7 +139,7 @@ int gaitopt_walker_torques(gaitopt_walker* w, const gaitopt_walker_state* s, dou
   if (!w || !s || !tau) return -1;
   try {
     const gaitopt::WalkerCommand c = w->walker.torques(stateOf(*s));
-    Eigen::Map<Vec4>(tau) = c.tau;
+    std::copy(c.tau.data(), c.tau.data() + 4, tau);
     return c.fallen ? 1 : 0;
   } catch (...) {
     std::fill(tau, tau + 4, 0.0);

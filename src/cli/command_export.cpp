@@ -8,6 +8,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "gaitopt/export/controller_export.hpp"
+#include "gaitopt/export/gait_library.hpp"
 #include "gaitopt/io/atomic_file.hpp"
 
 namespace gaitopt::cli {
@@ -44,11 +45,33 @@ std::optional<std::vector<ExportRow>> rampedExport(const GaitEvaluator& evaluato
 }
 
 struct ExportArgs {
-  std::string gait, out, format = "csv", first_stance = "left", ramp_out = "stop", rotor = "exact";
+  std::string gait, library, out, format = "csv", first_stance = "left", ramp_out = "stop",
+      rotor = "exact";
   int steps = 10, ramp_steps = 2;
   bool ramp = false;
   double rate = 1000.0;
 };
+
+RotorModel rotorOf(const std::string& name) {
+  return name == "exact" ? RotorModel::Exact : RotorModel::HighGear;
+}
+
+// `--library SWEEP_DIR`: the sweep's optimal gaits in one JSON file.
+void exportLibrary(const ExportArgs& args, int& exit_code) {
+  if (args.format != "json" || args.ramp) {
+    std::cerr << "gaitopt: error: --library writes the gaits' JSON phases: it needs --format "
+                 "json and takes no --ramp\n";
+    exit_code = kExitBadInput;
+    return;
+  }
+  requireFileOutput(args.out);
+  const std::vector<LibraryGait> gaits = loadSweepGaits(args.library);
+  writeFileAtomically(args.out, gaitLibraryJson(gaits, rotorOf(args.rotor)));
+  std::cout << "export: library of " << gaits.size() << " gaits, "
+            << shortNumber(gaits.front().speed) << " to " << shortNumber(gaits.back().speed)
+            << " m/s, rotor " << args.rotor << " -> " << args.out << "\n";
+  exit_code = 0;
+}
 
 }  // namespace
 
@@ -59,7 +82,14 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
       "Export N consecutive steps of a gait (alternating physical stance leg) at a fixed rate "
       "for a controller: phase variable, motor angles, feedforward torques split into parts, "
       "feet and planned reactions. Exit 3 if the gait is undefined, 2 on bad input.");
-  cmd->add_option("--gait", args->gait, "Gait YAML file")->required()->check(CLI::ExistingFile);
+  CLI::Option_group* source = cmd->add_option_group("source", "--gait or --library");
+  source->add_option("--gait", args->gait, "Gait YAML file")->check(CLI::ExistingFile);
+  source
+      ->add_option("--library", args->library,
+                   "gaitopt sweep output: its optimal gaits in one JSON file (with "
+                   "--format json; --steps, --rate, --first-stance, --ramp do not apply)")
+      ->check(CLI::ExistingDirectory);
+  source->require_option(1);
   cmd->add_option("--out", args->out, "Output file")->required();
   cmd->add_option("--steps", args->steps, "Number of steps (>= 1)")
       ->capture_default_str()
@@ -90,6 +120,7 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str()
       ->check(CLI::IsMember({"stop", "none"}));
   cmd->callback([args, &exit_code]() {
+    if (!args->library.empty()) return exportLibrary(*args, exit_code);
     const GaitFile gait = loadGaitFile(args->gait);
     // The JSON export writes each virtual constraint as one polynomial; a B-spline is piecewise.
     if (args->format == "json" && gait.options.parameterisation.basis == PathBasis::BSpline) {
@@ -111,7 +142,7 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
     req.steps = args->steps;
     req.rate = args->rate;
     req.first_stance = args->first_stance == "left" ? Leg::Left : Leg::Right;
-    req.rotor = args->rotor == "exact" ? RotorModel::Exact : RotorModel::HighGear;
+    req.rotor = rotorOf(args->rotor);
     // The feedforward overcomes the robot file's whole friction, not only the optimised part.
     ModelOptions feedforward = gait.model_options;
     feedforward.rotor = req.rotor;

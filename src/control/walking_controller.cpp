@@ -3,14 +3,12 @@
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <array>
 
 #include "gaitopt/control/control_constraints.hpp"
 #include "gaitopt/control/ds_acceleration_bounds.hpp"
 #include "gaitopt/gait/constraints/torque_envelope.hpp"
 #include "gaitopt/gait/ds_force_distribution.hpp"
 #include "gaitopt/math/small_qp.hpp"
-#include "gaitopt/model/chain_kinematics.hpp"
 #include "gaitopt/model/dynamics_pinned.hpp"
 #include "gaitopt/model/forward_dynamics.hpp"
 #include "gaitopt/model/inverse_dynamics.hpp"
@@ -101,38 +99,6 @@ PolyValue<double> ssReference(const WalkingController& s, int j, double alpha) {
           -f.first * decay * sigma / kHoldLength};
 }
 
-// The SS references of the four outputs at α: the gait's (ssReference), with the swing foot
-// raised by Δz(σ) = c σ³ (1 − σ) over the step's phase σ ∈ [0, 1] and lowered at the rate c
-// past it (ControllerOptions::touchdown_approach): the foot then meets the ground at a
-// downward speed c σ̇ instead of tangentially, so a tracking error of a millimetre moves the
-// touchdown by milliseconds, not tens of them. Δz is mapped to the swing hip and knee (δ3, δ4)
-// through the inverse of the swing foot's Jacobian at the reference, held constant over the
-// sample (its variation with α is second order against Δz).
-std::array<PolyValue<double>, 4> ssReferences(const WalkingController& s, double alpha) {
-  std::array<PolyValue<double>, 4> r;
-  for (int j = 0; j < 4; ++j) r[j] = ssReference(s, j, alpha);
-  const double c = s.options.touchdown_approach;
-  if (c <= 0.0) return r;
-  const GaitMotion<double>& mo = s.motion;
-  const double rate = 1.0 / (mo.alpha_fSS - mo.q_iSS(0));  // dσ/dα
-  const double sigma = (alpha - mo.q_iSS(0)) * rate;
-  if (sigma <= 0.0) return r;
-  const double dz = sigma <= 1.0 ? c * sigma * sigma * sigma * (1.0 - sigma) : -c * (sigma - 1.0);
-  const double dz1 = sigma <= 1.0 ? c * sigma * sigma * (3.0 - 4.0 * sigma) : -c;
-  const double dz2 = sigma <= 1.0 ? c * sigma * (6.0 - 12.0 * sigma) : 0.0;
-  Vec5 q;
-  q << alpha, r[0].value, r[1].value, r[2].value, r[3].value;
-  const Model& m = s.controller;
-  const Matrix25<double> J = chainPointJacobian(m, m.pinned.foot2, chainState(m, q, Vec5(Vec5::Zero())));
-  const Eigen::Vector2d up = J.rightCols<2>().partialPivLu().solve(Eigen::Vector2d(0.0, 1.0));
-  for (int k = 0; k < 2; ++k) {
-    r[k + 2].value += up(k) * dz;
-    r[k + 2].first += up(k) * dz1 * rate;
-    r[k + 2].second += up(k) * dz2 * rate * rate;
-  }
-  return r;
-}
-
 // SS input–output linearisation: Γ with B A⁻¹ D_Γ Γ = ÿ* + δ_d'' α̇² + B A⁻¹ (C + G), where
 // y = δ − δ_d(α), ẏ = B q̇, B = [−δ_d'(α) | I], ÿ* = −ω² y − 2ω ẏ. With touchdown by foot
 // height, α may pass α_fSS before the foot lands: the polynomials δ_d are then extrapolated
@@ -144,9 +110,8 @@ Vec4 ssControl(const WalkingController& s, const Vec5& q, const Vec5& qd, Contro
   const PinnedTerms<double> t = pinnedTerms(c, q, qd);
   Eigen::Matrix<double, 4, 5> B = Eigen::Matrix<double, 4, 5>::Zero();
   Vec4 curvature;
-  const std::array<PolyValue<double>, 4> ref = ssReferences(s, q(0));
   for (int j = 0; j < 4; ++j) {
-    const PolyValue<double>& v = ref[j];
+    const PolyValue<double> v = ssReference(s, j, q(0));
     B(j, 0) = -v.first;
     B(j, j + 1) = 1.0;
     e.error(j) = q(j + 1) - v.value;
@@ -223,7 +188,7 @@ DsInputs timeOptimalDsInputs(const WalkingController& s, const DsReference& ds, 
       s.controller, mo,
       {s.options.friction_coefficient, s.options.min_normal_force, s.options.full_torque_envelope},
       q(0), qd(0));
-  double alphadd = c.slope * qd(0) + kTimeOptimalGain * (c.alphad - qd(0));  // α̈_c on the curve
+  double alphadd = c.slope * qd(0) + s.options.ds_rate_gain * (c.alphad - qd(0));  // α̈_c on the curve
   if (b.defined) alphadd = std::clamp(alphadd, b.min, b.max);                // (4.1)
   DsInputs in;
   in.v_d << alphadd, Eigen::Vector2d(-k.kp * y - k.kd * yd);
@@ -275,9 +240,6 @@ Vec4 dsControl(const WalkingController& s, const DsReference& ds, double t, cons
   e.projection_infeasible = pr.infeasible;
   return response(pr.v).gamma_star;
 }
-// Bounds of the cubic DS's duration relative to T_DS.
-constexpr double kMinDsRange = 0.25;
-
 }  // namespace
 
 PdGains pdGains(const ControllerOptions& o) {
@@ -296,14 +258,10 @@ DsReference dsReference(const WalkingController& s, double t, const Vec5& q, con
   r.rate_scale = rate_scale;
   // Time-optimal control ends at α_fDS; t_end is then the time allowed before it counts as a
   // fall (ten planned DS durations).
-  // The cubic lasts T_DS scaled by the α range left: a touchdown before the planned α_iDS (a
-  // foot that meets the ground early) leaves a longer way to α_fDS, which T_DS would cover only
-  // with a large α̈; a late one a shorter way.
-  const double alpha_i = mo.ds_alpha(0.0).value, alpha_f = mo.ds_alpha(mo.T_DS).value;
-  const double range = std::clamp((q(0) - alpha_f) / (alpha_i - alpha_f), kMinDsRange, 1.0 / kMinDsRange);
-  r.t_end = t + (s.options.ds_control == DsAlphaControl::TimeOptimal ? 10.0 : range) * mo.T_DS;
+  r.t_end = t + (s.options.ds_control == DsAlphaControl::TimeOptimal ? 10.0 : 1.0) * mo.T_DS;
   // DS control of α: from the touchdown state to the cycle's (α_fDS, α̇_iSS) at lift-off.
-  r.alpha = cubicHermite(t, q(0), qd(0), r.t_end, alpha_f, rate_scale * mo.alphadot_iSS);
+  r.alpha = cubicHermite(t, q(0), qd(0), r.t_end, mo.ds_alpha(mo.T_DS).value,
+                         rate_scale * mo.alphadot_iSS);
   return r;
 }
 

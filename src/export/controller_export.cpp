@@ -331,71 +331,7 @@ void writeDsPhase(JsonWriter& w, const Model& model, const GaitMotion<double>& m
   w.endObject();
 }
 
-// How the feedforward is made and recomputed at other phase rates (README "gaitopt export").
-void writeFeedforwardHead(JsonWriter& w, const Model& model) {
-  w.key("feedforward").beginObject();
-  w.key("rotor_model").value(model.options.rotor == RotorModel::Exact ? "exact" : "high_gear");
-  w.key("equation").value("tau = B(s) sdd + C(s) sd^2 + G(s) + K + F(omega), per joint");
-  w.key("B").value("coefficient of sdd (columns tau_B_*): D_Gamma25^-1 rows 2-5 of A(q) dq/ds");
-  w.key("C").value("coefficient of sd^2 (columns tau_C_*): D_Gamma25^-1 rows 2-5 of "
-                   "A(q) d2q/ds2 + C(q, dq/ds) dq/ds");
-  w.key("G").value("gravity (columns tau_gravity_*)");
-  w.key("K").value("double support only: -D_Gamma25^-1 rows 2-5 of D2^T R2 at the planned "
-                   "reactions (columns tau_contact_*), which hold at the planned rates only; "
-                   "0 in single support");
-  w.key("F").value("friction (columns tau_friction_*): coulomb tanh(omega / smoothing) + "
-                   "viscous omega, omega = dphi/ds sd the joint-side speed");
-  w.key("friction").beginObject();
-  w.key("joint_order").value("leg-1 order of the phase (the robot's joints 1-4)");
-  w.key("coulomb").value(model.coulomb);
-  w.key("viscous").value(model.viscous);
-  w.key("smoothing").value(model.options.friction_smoothing);
-  w.endObject();
-  w.endObject();
-}
-
-void writeConventions(JsonWriter& w) {
-  w.key("conventions").beginObject();
-  w.key("frame").value("world x forward, z up, origin at the first stance foot; angles "
-                       "counter-clockwise positive, in radians; SI units");
-  w.key("alpha").value("angle of the leg-1 tibia from the vertical; leg 1 is the stance leg "
-                       "in single support (SS), the front leg in double support (DS)");
-  w.key("s").value("per phase s = (alpha - alpha_start) / (alpha_end - alpha_start): 0 at the "
-                   "phase start, 1 at its end; sd = alphad / (alpha_end - alpha_start), sdd = "
-                   "alphadd / (alpha_end - alpha_start)");
-  w.key("physical_joints").beginArray();
-  for (const char* j : kPhysicalJoints) w.value(j);
-  w.endArray();
-  w.key("leg1_to_physical").value(
-      "a phase's joint_order (knee 1, hip 1, hip 2, knee 2) is knee_left, hip_left, hip_right, "
-      "knee_right when leg 1 is the left leg (samples' stance = left), knee_right, hip_right, "
-      "hip_left, knee_left when it is the right leg");
-  w.key("phi").value("joint-side motor angles phi = D_Gamma^T q of q = (alpha, delta1..4): "
-                     "knee 1 = delta1, hip 1 = -delta2, hip 2 = -(delta2 + delta3), knee 2 = "
-                     "delta4; motor = gear_ratio phi");
-  w.key("polynomials").value(
-      "monomial a_k: p(s) = sum a_k s^k; bezier b_i: p(s) = sum b_i C(n,i) s^i (1-s)^(n-i); "
-      "outside 0 <= s <= 1 (early or late touchdown) the same polynomials extend the path");
-  w.key("tables").value("feedforward_table: values at the listed s (uniform), to be "
-                        "interpolated linearly within the stated error; outside [0, 1] hold "
-                        "the end values");
-  w.key("events").value("event 0: sample at the fixed rate; 1: touchdown, 2: lift-off, at the "
-                        "exact instant: the ending phase's row (s = 1) then the starting "
-                        "phase's (s = 0)");
-  w.endObject();
-}
-
 const char* rotorName(RotorModel r) { return r == RotorModel::Exact ? "exact" : "high_gear"; }
-
-// A file embedded verbatim with its path and digest.
-void writeEmbeddedFile(JsonWriter& w, const std::string& key, const std::string& path) {
-  const std::string text = fileBytes(path);
-  w.key(key).beginObject();
-  w.key("file").value(path);
-  w.key("sha256").value(sha256Hex(text));
-  w.key("yaml").value(text);
-  w.endObject();
-}
 
 // The `# schema_version` line before the header, of the version this reader knows.
 void requireCsvSchema(const ExportMetadata& meta, const std::string& path, int line) {
@@ -580,6 +516,86 @@ std::string exportCsv(const ExportMetadata& meta, const std::vector<ExportRow>& 
   return out.str();
 }
 
+// A file embedded verbatim with its path and digest.
+void writeEmbeddedFile(JsonWriter& w, const std::string& key, const std::string& path) {
+  const std::string text = fileBytes(path);
+  w.key(key).beginObject();
+  w.key("file").value(path);
+  w.key("sha256").value(sha256Hex(text));
+  w.key("yaml").value(text);
+  w.endObject();
+}
+
+// How the feedforward is made and recomputed at other phase rates (README "gaitopt export").
+void writeFeedforwardHead(JsonWriter& w, const Model& model) {
+  w.key("feedforward").beginObject();
+  w.key("rotor_model").value(model.options.rotor == RotorModel::Exact ? "exact" : "high_gear");
+  w.key("equation").value("tau = B(s) sdd + C(s) sd^2 + G(s) + K + F(omega), per joint");
+  w.key("B").value("coefficient of sdd (columns tau_B_*): D_Gamma25^-1 rows 2-5 of A(q) dq/ds");
+  w.key("C").value("coefficient of sd^2 (columns tau_C_*): D_Gamma25^-1 rows 2-5 of "
+                   "A(q) d2q/ds2 + C(q, dq/ds) dq/ds");
+  w.key("G").value("gravity (columns tau_gravity_*)");
+  w.key("K").value("double support only: -D_Gamma25^-1 rows 2-5 of D2^T R2 at the planned "
+                   "reactions (columns tau_contact_*), which hold at the planned rates only; "
+                   "0 in single support");
+  w.key("F").value("friction (columns tau_friction_*): coulomb tanh(omega / smoothing) + "
+                   "viscous omega, omega = dphi/ds sd the joint-side speed");
+  w.key("friction").beginObject();
+  w.key("joint_order").value("leg-1 order of the phase (the robot's joints 1-4)");
+  w.key("coulomb").value(model.coulomb);
+  w.key("viscous").value(model.viscous);
+  w.key("smoothing").value(model.options.friction_smoothing);
+  w.endObject();
+  w.endObject();
+}
+
+void writeExportConventions(JsonWriter& w) {
+  w.key("conventions").beginObject();
+  w.key("frame").value("world x forward, z up, origin at the first stance foot; angles "
+                       "counter-clockwise positive, in radians; SI units");
+  w.key("alpha").value("angle of the leg-1 tibia from the vertical; leg 1 is the stance leg "
+                       "in single support (SS), the front leg in double support (DS)");
+  w.key("s").value("per phase s = (alpha - alpha_start) / (alpha_end - alpha_start): 0 at the "
+                   "phase start, 1 at its end; sd = alphad / (alpha_end - alpha_start), sdd = "
+                   "alphadd / (alpha_end - alpha_start)");
+  w.key("physical_joints").beginArray();
+  for (const char* j : kPhysicalJoints) w.value(j);
+  w.endArray();
+  w.key("leg1_to_physical").value(
+      "a phase's joint_order (knee 1, hip 1, hip 2, knee 2) is knee_left, hip_left, hip_right, "
+      "knee_right when leg 1 is the left leg (samples' stance = left), knee_right, hip_right, "
+      "hip_left, knee_left when it is the right leg");
+  w.key("phi").value("joint-side motor angles phi = D_Gamma^T q of q = (alpha, delta1..4): "
+                     "knee 1 = delta1, hip 1 = -delta2, hip 2 = -(delta2 + delta3), knee 2 = "
+                     "delta4; motor = gear_ratio phi");
+  w.key("polynomials").value(
+      "monomial a_k: p(s) = sum a_k s^k; bezier b_i: p(s) = sum b_i C(n,i) s^i (1-s)^(n-i); "
+      "outside 0 <= s <= 1 (early or late touchdown) the same polynomials extend the path");
+  w.key("tables").value("feedforward_table: values at the listed s (uniform), to be "
+                        "interpolated linearly within the stated error; outside [0, 1] hold "
+                        "the end values");
+  w.key("events").value("event 0: sample at the fixed rate; 1: touchdown, 2: lift-off, at the "
+                        "exact instant: the ending phase's row (s = 1) then the starting "
+                        "phase's (s = 0)");
+  w.endObject();
+}
+
+void writeCyclicGait(JsonWriter& w, const GaitEvaluation<double>& e) {
+  w.key("cyclic_gait").beginObject();
+  w.key("speed").value(e.speed);
+  w.key("step_length").value(e.motion.d);
+  w.key("t_ss").value(e.motion.T_SS);
+  w.key("t_ds").value(e.motion.T_DS);
+  w.endObject();
+}
+
+void writeExportPhases(JsonWriter& w, const Model& model, const GaitMotion<double>& motion) {
+  w.key("phases").beginObject();
+  writeSsPhase(w, model, motion);
+  if (motion.T_DS > 0.0) writeDsPhase(w, model, motion);
+  w.endObject();
+}
+
 std::string exportJson(const GaitFile& gait, const Model& model, const GaitEvaluation<double>& e,
                        const ExportMetadata& meta, const std::vector<ExportRow>& rows) {
   JsonWriter w;
@@ -589,24 +605,16 @@ std::string exportJson(const GaitFile& gait, const Model& model, const GaitEvalu
   w.key("schema_version").value(kControllerExportSchema);
   writeEmbeddedFile(w, "gait", gait.path);
   writeEmbeddedFile(w, "robot", gait.robot_path);
-  w.key("cyclic_gait").beginObject();
-  w.key("speed").value(e.speed);
-  w.key("step_length").value(e.motion.d);
-  w.key("t_ss").value(e.motion.T_SS);
-  w.key("t_ds").value(e.motion.T_DS);
-  w.endObject();
+  writeCyclicGait(w, e);
   writeFeedforwardHead(w, model);
-  writeConventions(w);
+  writeExportConventions(w);
   w.key("metadata").beginObject();
   for (const auto& [k, v] : meta) w.key(k).value(v);
   w.endObject();
   w.key("units").beginObject();
   for (const auto& [name, unit] : exportColumns()) w.key(name).value(unit);
   w.endObject();
-  w.key("phases").beginObject();
-  writeSsPhase(w, model, e.motion);
-  if (e.motion.T_DS > 0.0) writeDsPhase(w, model, e.motion);
-  w.endObject();
+  writeExportPhases(w, model, e.motion);
   w.key("samples").beginObject();
   const auto column = [&](const std::string& name, const auto& get) {
     w.key(name).beginArray();

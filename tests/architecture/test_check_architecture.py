@@ -46,7 +46,7 @@ def main():
         code, out = run(root)
         expected = [
             "src/gait/d.cpp: gait (layer 3) includes io (layer 6)",
-            "src/opt/e.cpp: opt (layer 4) includes sim (layer 4)",
+            "src/opt/e.cpp: opt (layer 4) includes sim (layer 5)",
             "src/cli/big.cpp: 201 lines, more than 200",
             'the status text "optimal" is compared in 3 places (at most 2)',
             "src/widgets/w.cpp: folder 'widgets' has no layer in LAYERS",

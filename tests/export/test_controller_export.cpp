@@ -123,12 +123,7 @@ TEST_CASE("Export CSV reader refuses a file of another schema version", "[export
 }
 
 TEST_CASE("Export JSON polynomials reproduce the sampled motor angles to 1e-9", "[export]") {
-  const DefaultGait f;
-  ExportRequest req;
-  req.rate = 300;
-  const std::vector<ExportRow> rows = exportTrajectory(f.evaluator, f.evaluation, f.model, req);
-  const YAML::Node doc = YAML::Load(exportJson(f.gait, f.model, f.evaluation,
-                                               exportMetadata(f.gait, f.evaluation, req), rows));
+  const auto [rows, doc] = exportedJson(DefaultGait(), 300);
   REQUIRE(doc["samples"]["t"].size() == rows.size());
   const YAML::Node ss = doc["phases"]["SS"], ds = doc["phases"]["DS"];
   const double a0 = ss["alpha_start"].as<double>(), a1 = ss["alpha_end"].as<double>();

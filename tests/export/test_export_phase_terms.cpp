@@ -9,6 +9,7 @@
 #include "gaitopt/export/controller_export.hpp"
 #include "gaitopt/model/inverse_dynamics.hpp"
 #include "test_default_gait.hpp"
+#include "test_export_rows.hpp"
 
 namespace gaitopt::test {
 namespace {
@@ -154,12 +155,7 @@ TEST_CASE("With the high-gear rotor the feedforward is that model's inverse dyna
 
 TEST_CASE("JSON feedforward tables match the rows within their stated interpolation error",
           "[export]") {
-  const DefaultGait f;
-  ExportRequest req;
-  req.rate = 300;
-  const std::vector<ExportRow> rows = exportTrajectory(f.evaluator, f.evaluation, f.model, req);
-  const YAML::Node doc = YAML::Load(exportJson(f.gait, f.model, f.evaluation,
-                                               exportMetadata(f.gait, f.evaluation, req), rows));
+  const auto [rows, doc] = exportedJson(DefaultGait(), 300);
   CHECK(doc["schema_version"].as<int>() == 2);
   CHECK(doc["feedforward"]["rotor_model"].as<std::string>() == "exact");
   for (const ExportRow& r : rows) {

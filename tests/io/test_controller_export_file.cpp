@@ -46,6 +46,20 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 
 const auto read = [](const std::string& p) { readControllerExport(p); };
 
+// The export at `path` refused for its embedded gait file: the message names the JSON file
+// with "[gait.yaml]", `key` inside the embedded text and the problem.
+void requireEmbeddedGaitError(const std::string& path, const std::string& key,
+                              const std::string& problem) {
+  try {
+    readControllerExport(path);
+    FAIL("no ConfigError");
+  } catch (const ConfigError& e) {
+    CHECK(e.file() == path + " [gait.yaml]");
+    CHECK(e.key() == key);
+    CHECK_THAT(std::string(e.what()), Catch::Matchers::Contains(problem));
+  }
+}
+
 }  // namespace
 
 TEST_CASE("Controller export JSON read back rebuilds the exact gait", "[export][io]") {
@@ -119,14 +133,7 @@ TEST_CASE("Controller export reader rejects what is not a readable export", "[ex
   }
   SECTION("malformed embedded gait YAML") {
     const std::string bad = replaced(text, "\\nparameters:\\n", "\\nparameters: [\\n");
-    const std::string path = written(bad, "bad_yaml");
-    try {
-      readControllerExport(path);
-      FAIL("no ConfigError");
-    } catch (const ConfigError& e) {
-      CHECK(e.file() == path + " [gait.yaml]");
-      CHECK_THAT(std::string(e.what()), Catch::Matchers::Contains("invalid YAML"));
-    }
+    requireEmbeddedGaitError(written(bad, "bad_yaml"), "", "invalid YAML");
   }
   SECTION("embedded text not a string") {
     const std::size_t robot = text.find("\"robot\": {");
@@ -138,15 +145,7 @@ TEST_CASE("Controller export reader rejects what is not a readable export", "[ex
   }
   SECTION("bad value in the embedded gait") {
     const std::string bad = replaced(text, "\\n  T_DS: ", "\\n  T_DS: -");
-    const std::string path = written(bad, "bad_value");
-    try {
-      readControllerExport(path);
-      FAIL("no ConfigError");
-    } catch (const ConfigError& e) {
-      CHECK(e.file() == path + " [gait.yaml]");
-      CHECK(e.key() == "parameters.T_DS");
-      CHECK_THAT(std::string(e.what()), Catch::Matchers::Contains("must be > 0"));
-    }
+    requireEmbeddedGaitError(written(bad, "bad_value"), "parameters.T_DS", "must be > 0");
   }
 }
 

@@ -5,7 +5,7 @@ Usage: check_example.py GAITOPT_BINARY   (PYTHONPATH must reach the built module
 Runs the example into a scratch directory and checks what it claims to write: the optimiser's
 files, whose summary.json agrees with the printed status and criterion; three non-blank
 figures; and walk.csv, 10 steps at 1 kHz (one row per millisecond of 10 (T_SS + T_DS), plus
-the first), whose stance foot alternates.
+the first, and the rows at the touchdown and lift-off instants), whose stance foot alternates.
 """
 import csv
 import json
@@ -47,14 +47,19 @@ def main(binary):
             rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
         step = summary["T_SS"] + summary["T_DS"]
         expected = int(np.floor(10 * step * 1000 + 1e-9)) + 1
-        print(f"example: C_Gamma {summary['criteria']['C_Gamma']:.2f}, walk.csv {len(rows)} rows "
-              f"(expected {expected}), last t {rows[-1]['t']}")
-        check(len(rows) == expected, f"walk.csv has {len(rows)} rows, expected {expected}")
+        fixed_rate = [r for r in rows if r["event"] == "0"]
+        print(f"example: C_Gamma {summary['criteria']['C_Gamma']:.2f}, walk.csv {len(fixed_rate)} "
+              f"fixed-rate rows (expected {expected}) and {len(rows) - len(fixed_rate)} event "
+              f"rows, last t {rows[-1]['t']}")
+        check(len(fixed_rate) == expected,
+              f"walk.csv has {len(fixed_rate)} fixed-rate rows, expected {expected}")
+        # A touchdown and a lift-off row pair at each of the 19 phase boundaries.
+        check(len(rows) - len(fixed_rate) == 38, f"{len(rows) - len(fixed_rate)} event rows")
         check(abs(float(rows[-1]["t"]) - (expected - 1) / 1000) < 1e-9, f"last t {rows[-1]['t']}")
         stances = [r["stance"] for r in rows if r["phase"] == "SS"]
         changes = sum(a != b for a, b in zip(stances, stances[1:]))
         check(changes == 9, f"the SS stance foot changes {changes} times in 10 steps, expected 9")
-        check(f"exported {expected} samples" in result.stdout, "the exported sample count is not printed")
+        check(f"exported {len(rows)} samples" in result.stdout, "the exported sample count is not printed")
     return 0
 
 

@@ -51,11 +51,8 @@ struct ControllerOptions {
   // turn the robot as one body about the stance foot and bring the swing foot down (the
   // thesis' freeze, §4.3.1.3, made C¹).
   bool hold_references_past_fss = false;
-  // c [m]: the swing foot raised by c σ³(1 − σ) over the step's phase σ and lowered at c per
-  // unit σ past its end, so it meets the ground at a downward speed c σ̇ (walking_controller.cpp,
-  // ssReferences); 0: the gait's references unchanged.
-  double touchdown_approach = 0.0;
   DsAlphaControl ds_control = DsAlphaControl::Cubic;
+  double ds_rate_gain = kTimeOptimalGain;  // k [1/s] of the time-optimal law (4.1)
 };
 
 struct PdGains {

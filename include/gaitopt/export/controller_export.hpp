@@ -14,6 +14,7 @@
 #include "gaitopt/gait/evaluator.hpp"
 #include "gaitopt/gait/trajectory.hpp"
 #include "gaitopt/io/gait_file.hpp"
+#include "gaitopt/io/json_writer.hpp"
 
 namespace gaitopt {
 
@@ -101,6 +102,19 @@ using ExportMetadata = std::map<std::string, std::string>;
 
 ExportMetadata exportMetadata(const GaitFile& gait, const GaitEvaluation<double>& evaluation,
                               const ExportRequest& request);
+
+// Parts of the JSON export, shared with the gait library (export/gait_library.hpp).
+// A file embedded verbatim under `key`: its path, SHA-256 and text (`yaml`).
+void writeEmbeddedFile(JsonWriter& w, const std::string& key, const std::string& path);
+// `cyclic_gait`: speed, step length, T_SS, T_DS of one evaluated gait.
+void writeCyclicGait(JsonWriter& w, const GaitEvaluation<double>& evaluation);
+// `feedforward`: the rotor model of `model`, the decomposition, the friction coefficients.
+void writeFeedforwardHead(JsonWriter& w, const Model& model);
+// `conventions`: frame, α, s, joint orders, φ, polynomials, tables, events.
+void writeExportConventions(JsonWriter& w);
+// `phases`: per phase the α range, virtual constraints in s and the feedforward tables of
+// `model` (polynomial paths only).
+void writeExportPhases(JsonWriter& w, const Model& model, const GaitMotion<double>& motion);
 
 // Column names and units in file order.
 std::vector<std::pair<std::string, std::string>> exportColumns();

@@ -1,0 +1,163 @@
+// The reference walker on measured states: the measured-state → pinned-coordinate map, its
+// initial state, the law's torques at that state, the phase switching on contact events, the
+// torque envelope, the fall judgement.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "gaitopt/control/walker.hpp"
+#include "gaitopt/gait/constraints/torque_envelope.hpp"
+#include "gaitopt/model/chain_kinematics.hpp"
+#include "gaitopt/model/joint_friction.hpp"
+#include "test_default_gait.hpp"
+
+namespace gaitopt::test {
+namespace {
+
+Walker walkerOf(const ShippedGait& g) {
+  return Walker(g.model, g.evaluation, g.gait.options.parameterisation,
+                walkerOptionsFor(g.gait.options, g.model));
+}
+
+// The measured state of pinned coordinates (q, q̇) with `leg1` the physical leg 1, foot 1 at x.
+WalkerState measured(const Model& m, const Vec5& q, const Vec5& qd, Stance leg1, double x,
+                     std::array<bool, 2> contact, double t) {
+  WalkerState s;
+  const ChainState<double> st = chainState(m, q, qd);
+  s.t = t;
+  s.hip = chainPoint(m.pinned.hip, st) + Vec2(x, 0.0);
+  s.hip_rate = chainPointVelocity(m.pinned.hip, st);
+  s.pitch = q(0) + q(1) - q(2);
+  s.pitch_rate = qd(0) + qd(1) - qd(2);
+  s.phi = physicalOrder(jointSpeeds(q), leg1);
+  s.phi_rate = physicalOrder(jointSpeeds(qd), leg1);
+  s.contact = contact;
+  return s;
+}
+
+// The gait's SS state at α (on its virtual constraints, rate α̇).
+void ssState(const GaitMotion<double>& mo, double alpha, double alphad, Vec5& q, Vec5& qd) {
+  q(0) = alpha;
+  qd(0) = alphad;
+  for (int j = 0; j < 4; ++j) {
+    q(j + 1) = mo.ss_path[j](alpha).value;
+    qd(j + 1) = mo.ss_path[j](alpha).first * alphad;
+  }
+}
+
+}  // namespace
+
+TEST_CASE("Walker state map recovers the pinned coordinates for either stance leg",
+          "[control][walker]") {
+  const DefaultGait g;
+  Vec5 q, qd;
+  ssState(g.evaluation.motion, 0.5 * (g.evaluation.motion.q_iSS(0) + g.evaluation.motion.alpha_fSS),
+          -0.8, q, qd);
+  for (Stance leg : {Stance::Left, Stance::Right}) {
+    Vec5 q2, qd2;
+    pinnedStateOf(measured(g.model, q, qd, leg, 0.3, {true, false}, 0.0), leg, q2, qd2);
+    CHECK((q2 - q).cwiseAbs().maxCoeff() < 1e-14);
+    CHECK((qd2 - qd).cwiseAbs().maxCoeff() < 1e-14);
+  }
+  const Vec4 v(1.0, 2.0, 3.0, 4.0);
+  CHECK(physicalOrder(v, Stance::Left) == v);
+  CHECK(physicalOrder(physicalOrder(v, Stance::Right), Stance::Right) == v);
+  CHECK(physicalOrder(v, Stance::Right)(0) == 4.0);
+}
+
+TEST_CASE("Walker initial state is the gait's SS start on the left foot at rest at x = 0",
+          "[control][walker]") {
+  const DefaultGait g;
+  Walker w = walkerOf(g);
+  const WalkerState s = w.initialState();
+  const GaitMotion<double>& mo = g.evaluation.motion;
+  Vec5 q, qd;
+  pinnedStateOf(s, Stance::Left, q, qd);
+  CHECK((q - mo.q_iSS).cwiseAbs().maxCoeff() < 1e-12);
+  CHECK(qd(0) == Approx(mo.alphadot_iSS).epsilon(1e-12));
+  CHECK(s.t == 0.0);
+  CHECK(s.contact[0]);
+  CHECK_FALSE(s.contact[1]);
+  // The hip seen from foot 1 at the origin; foot 1's velocity is zero (rest).
+  const ChainState<double> st = chainState(g.model, q, qd);
+  CHECK((s.hip - chainPoint(g.model.pinned.hip, st)).norm() < 1e-14);
+  CHECK((s.hip_rate - chainPointVelocity(g.model.pinned.hip, st)).norm() < 1e-14);
+  // On the virtual constraints: the law's outputs and their rates vanish, so the torques are
+  // the feedforward alone, within the envelope.
+  const WalkerCommand c = w.torques(s);
+  CHECK_FALSE(c.fallen);
+  CHECK(c.law.error.cwiseAbs().maxCoeff() < 1e-12);
+  const Vec4 limit = jointTorqueLimits(g.model.robot.envelope, jointSpeeds(qd), true);
+  CHECK((c.tau.cwiseAbs() - limit).maxCoeff() <= 1e-9);
+  CHECK(w.phase() == WalkerPhase::SingleSupport);
+}
+
+TEST_CASE("Walker switches phase on the swing foot's contact, not on time or the phase",
+          "[control][walker]") {
+  const DefaultGait g;
+  Walker w = walkerOf(g);
+  const GaitMotion<double>& mo = g.evaluation.motion;
+  Vec5 q, qd;
+  // Early in the SS a contact of the swing foot (it just lifted off) is not a touchdown.
+  ssState(mo, mo.q_iSS(0) + 0.2 * (mo.alpha_fSS - mo.q_iSS(0)), mo.alphadot_iSS, q, qd);
+  w.torques(measured(g.model, q, qd, Stance::Left, 0.0, {true, true}, 0.1));
+  CHECK(w.phase() == WalkerPhase::SingleSupport);
+  CHECK(w.steps() == 0);
+  // Past the SS end without contact: still SS (the references go on past α_fSS).
+  ssState(mo, mo.alpha_fSS + 0.01 * (mo.alpha_fSS - mo.q_iSS(0)), mo.alphadot_fSS, q, qd);
+  w.torques(measured(g.model, q, qd, Stance::Left, 0.0, {true, false}, 0.5));
+  CHECK(w.phase() == WalkerPhase::SingleSupport);
+  // The swing foot's contact: touchdown, a DS on the right foot as leg 1.
+  ssState(mo, mo.alpha_fSS, mo.alphadot_fSS, q, qd);
+  w.torques(measured(g.model, q, qd, Stance::Left, 0.0, {true, true}, 0.55));
+  CHECK(w.phase() == WalkerPhase::DoubleSupport);
+  CHECK(w.leg1() == Stance::Right);
+  CHECK(w.steps() == 1);
+  // Just past α_fDS, T_DS later, the SS on the right leg starts.
+  ssState(mo, mo.q_iSS(0) + 0.01 * (mo.alpha_fSS - mo.q_iSS(0)), mo.alphadot_iSS, q, qd);
+  w.torques(measured(g.model, q, qd, Stance::Right, 0.3, {true, true}, 0.55 + 2.0 * mo.T_DS));
+  CHECK(w.phase() == WalkerPhase::SingleSupport);
+  CHECK(w.leg1() == Stance::Right);
+}
+
+TEST_CASE("Walker judges a tipped trunk or a flight as fallen and stays fallen",
+          "[control][walker]") {
+  const DefaultGait g;
+  {
+    Walker w = walkerOf(g);
+    WalkerState s = w.initialState();
+    s.pitch = 1.2;
+    const WalkerCommand c = w.torques(s);
+    CHECK(c.fallen);
+    CHECK(c.tau == Vec4::Zero());
+    CHECK(w.torques(w.initialState()).fallen);
+  }
+  {
+    Walker w = walkerOf(g);
+    WalkerState s = w.initialState();
+    CHECK_FALSE(w.torques(s).fallen);
+    s.contact = {false, false};
+    s.t = 0.05;
+    CHECK_FALSE(w.torques(s).fallen);  // a short flight (contact chatter) is not a fall
+    s.t = 0.2;
+    CHECK(w.torques(s).fallen);
+  }
+}
+
+TEST_CASE("Walker torques stay within the envelope at the joints' speeds", "[control][walker]") {
+  const DefaultGait g;
+  Walker w = walkerOf(g);
+  const GaitMotion<double>& mo = g.evaluation.motion;
+  Vec5 q, qd;
+  for (int k = 0; k < 20; ++k) {
+    ssState(mo, mo.q_iSS(0) + 0.04 * k * (mo.alpha_fSS - mo.q_iSS(0)), -1.0, q, qd);
+    // Far from the constraints: large outputs, large demanded torques.
+    q(1) += 0.2 * std::sin(k);
+    qd(3) += 3.0 * std::cos(k);
+    const WalkerCommand c = w.torques(measured(g.model, q, qd, Stance::Left, 0.0, {true, false}, 0.01 * k));
+    const Vec4 limit = jointTorqueLimits(g.model.robot.envelope, jointSpeeds(qd), true);
+    CHECK((c.tau.cwiseAbs() - limit).maxCoeff() <= 1e-9);
+  }
+}
+
+}  // namespace gaitopt::test
