@@ -34,8 +34,10 @@ struct WalkerOptions : ControllerOptions {
   // The rear foot off the ground for this long [s] ends a double support early: shorter losses
   // are the contact's chatter at the front foot's touchdown.
   double rear_lift_time = 0.02;
-  // Time-optimal DS: lift-off once α̇ is within this fraction of its target (walker.cpp).
+  // Time-optimal DS: lift-off past α_fDS once α̇ is within this fraction of its target, or
+  // lift_off_timeout × T_DS after the touchdown (walker.cpp).
   double lift_off_rate_tolerance = 0.05;
+  double lift_off_timeout = 1.0;
   // Step-to-step speed regulation: after each step the relative error of its mean speed
   // (stance foot to stance foot over the touchdown period) is summed, and the double support's
   // target rates are scaled by 1 − speed_gain × the sum, within ±max_rate_correction: an
