@@ -79,6 +79,8 @@ void registerEvaluateCommand(CLI::App& app, int& exit_code) {
                       : shortNumber(verdict.between_nodes.worst_scaled, "%.3g") + " scaled")
               << " -> "
               << args->out << "\n";
+    const std::string friction = robotFrictionMessage(evaluator.layout(), verdict.robot_friction);
+    if (!friction.empty()) std::cerr << "gaitopt: evaluate: " << friction << "\n";
     exit_code = defined ? 0 : kExitUndefined;
   });
 }

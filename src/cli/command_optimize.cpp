@@ -190,6 +190,8 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
               << (r.unmet_constraints.empty() ? std::string() : ": " + names.str())
               << "; largest violation " << shortNumber(r.constraint_violation, "%.4g")
               << "; the best point found was written to " << args->out << "\n";
+    const std::string friction = robotFrictionMessage(evaluator.layout(), r.robot_friction);
+    if (!friction.empty()) std::cerr << "gaitopt: optimize: " << friction << "\n";
     exit_code = kExitUndefined;
   });
 }

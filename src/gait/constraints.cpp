@@ -8,6 +8,7 @@
 #include "gaitopt/gait/constraints/joint_limits.hpp"
 #include "gaitopt/gait/constraints/reach.hpp"
 #include "gaitopt/gait/constraints/torque_envelope.hpp"
+#include "gaitopt/gait/constraints/touchdown_speed.hpp"
 #include "gaitopt/gait/constraints/zero_dynamics.hpp"
 #include "gaitopt/gait/impact_landing.hpp"
 
@@ -26,6 +27,7 @@ const ConstraintGroupSpec* const kRegistry[] = {
     &kClearanceSpec,
     &kTorqueDsSpec, &kJointLimitsDsSpec, &kFrictionConeDsSpec, &kNormalForceDsSpec, &kDsMonotoneSpec,
     &kImpactArrivalSpec, &kImpactConsistencySpec, &kImpactRateRatioSpec, &kImpactOrbitSpec,
+    &kTouchdownSpeedSpec,
 };
 static_assert(sizeof(kRegistry) / sizeof(kRegistry[0]) == kNumConstraintGroups,
               "one registry entry per ConstraintGroupId");
@@ -49,6 +51,8 @@ ConstraintLayout::ConstraintLayout(const GaitOptions& o) {
       case ConstraintPresence::WithoutImpact: return impact ? 0 : 1;
       case ConstraintPresence::ImpactSlacks:
         return impact ? landingImpactSlackCount(par.landing) : 0;
+      case ConstraintPresence::WithTouchdownSpeed:
+        return impact && o.touchdown_speed_min > 0.0 ? 1 : 0;
       default: return 1;
     }
   };

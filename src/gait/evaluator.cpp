@@ -15,7 +15,10 @@ template <int N> using GaitAD = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1
 
 Model gaitModel(const RobotParams& robot, const GaitOptions& options, const ModelOptions& mo) {
   Model m = buildModel(robot, mo);
-  if (!options.dry_friction) m.coulomb.setZero();  // viscous-only results of §3.6
+  // The same friction (1.21) as the exported feedforward (export/controller_export.cpp): the
+  // robot's Coulomb and viscous friction with the smooth sign of width friction_smoothing.
+  // Without dry friction, viscous only (the §3.6 results).
+  if (!options.dry_friction) m.coulomb.setZero();
   return m;
 }
 
@@ -37,6 +40,9 @@ GaitEvaluator::GaitEvaluator(const RobotParams& robot, const GaitOptions& option
       options.parameterisation.size() > kMaxGaitParameters)
     throw std::invalid_argument("unsupported parameterisation " +
                                 options.parameterisation.label());
+  if (options.touchdown_speed_min > 0.0 && !options.parameterisation.landsWithImpact())
+    throw std::invalid_argument("touchdown_speed_min needs a landing with impact (the "
+                                "zero-velocity landing meets the ground at rest)");
 }
 
 GaitEvaluator GaitEvaluator::withCriteriaRefinement(int refinement) const {

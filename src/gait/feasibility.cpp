@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "gaitopt/gait/constraint_summary.hpp"
@@ -40,6 +41,44 @@ BetweenNodesCheck checkBetweenNodes(const GaitEvaluator& ev, const GaitParameter
   return r;
 }
 
+RobotFrictionCheck checkRobotFriction(const GaitEvaluator& ev, const GaitParameters& p) {
+  RobotFrictionCheck r;
+  const RobotParams& robot = ev.model().robot;
+  if (ev.options().dry_friction ||
+      std::all_of(robot.coulomb.begin(), robot.coulomb.end(), [](double c) { return c == 0.0; }))
+    return r;
+  GaitOptions o = ev.options();
+  o.dry_friction = true;
+  o.criteria_refinement = 1;  // constraints only
+  const GaitEvaluator full(robot, o, ev.model().options);
+  const GaitEvaluation<double> e = full.evaluate(p);
+  if (!e.motion_computed) return r;
+  const BetweenNodesCheck fine = checkBetweenNodes(full, p);
+  r.checked = true;
+  r.excess = -std::numeric_limits<double>::infinity();
+  for (int id : {kTorqueSS, kTorqueDS}) {
+    const ConstraintGroup& g = full.layout()[id];
+    const double scale = constraintGroupScale(id, full.model());
+    double worst = fine.group_worst_scaled[id] * scale;
+    for (int k = g.offset; k < g.offset + g.count; ++k)
+      if (e.state[k] != ConstraintState::NotComputed) worst = std::max(worst, e.g[k]);
+    if (worst > r.excess) {
+      r.excess = worst;
+      r.worst_group = id;
+    }
+  }
+  r.met = r.excess <= kFeasibilityTolerance * constraintGroupScale(r.worst_group, full.model());
+  return r;
+}
+
+std::string robotFrictionMessage(const ConstraintLayout& layout, const RobotFrictionCheck& c) {
+  if (!c.checked || c.met) return "";
+  char excess[32];
+  std::snprintf(excess, sizeof excess, "%.4g", c.excess);
+  return layout[c.worst_group].name + " exceeds the torque envelope by " + excess + " " +
+         layout[c.worst_group].unit + " with the robot's Coulomb friction (dry_friction: false)";
+}
+
 FeasibilityVerdict feasibilityVerdict(const GaitEvaluator& ev, const GaitParameters& p,
                                       const GaitEvaluation<double>& e,
                                       std::optional<double> speed) {
@@ -61,6 +100,14 @@ FeasibilityVerdict feasibilityVerdict(const GaitEvaluator& ev, const GaitParamet
     v.worst_scaled = std::max(v.worst_scaled, v.between_nodes.worst_scaled);
     for (std::size_t g = 0; g < unmet.size(); ++g)
       if (v.between_nodes.group_worst_scaled[g] > kFeasibilityTolerance) unmet[g] = true;
+    v.robot_friction = checkRobotFriction(ev, p);
+    if (v.robot_friction.checked) {
+      const int g = v.robot_friction.worst_group;
+      v.max_violation = std::max(v.max_violation, v.robot_friction.excess);
+      v.worst_scaled =
+          std::max(v.worst_scaled, v.robot_friction.excess / constraintGroupScale(g, ev.model()));
+      if (!v.robot_friction.met) unmet[g] = true;
+    }
   }
   bool speed_unmet = false;
   if (speed && zeroDynamicsComputed(ev, e)) {

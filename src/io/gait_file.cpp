@@ -34,6 +34,7 @@ const Range kReach{0.0, 1.0, false, "m^2"};
 const Range kKappa{0.0, 10.0, true, ""};
 const Range kSpeed{0.0, kMaxWalkingSpeed, false, "m/s"};
 const Range kSmoothing{0.0, 1e3, true, "rad/s"};
+const Range kFootSpeed{0.0, 10.0, false, "m/s"};
 }  // namespace ranges
 
 int integerInOr(const YamlMap& m, const std::string& key, int lo, int hi, int fallback) {
@@ -185,6 +186,11 @@ GaitOptions parseGaitOptions(const YamlMap& m, ModelOptions& model_options) {
   o.full_torque_envelope = booleanOr(m, "full_torque_envelope", o.full_torque_envelope);
   o.parameterisation.landing = parseLanding(m);
   o.target_speed = numberInOr(m, "target_speed", ranges::kSpeed, o.target_speed);
+  o.touchdown_speed_min =
+      numberInOr(m, "touchdown_speed_min", ranges::kFootSpeed, o.touchdown_speed_min);
+  if (o.touchdown_speed_min > 0.0 && !o.parameterisation.landsWithImpact())
+    throw m.error("touchdown_speed_min", "needs 'landing: impact' (the zero-velocity landing "
+                                         "meets the ground at rest)");
   if (const int k = choiceOr(m, "rotor", kRotorModels); k >= 0) {
     model_options.rotor = k == 0 ? RotorModel::Exact : RotorModel::HighGear;
   }
@@ -250,6 +256,7 @@ std::string gaitOptionsYaml(const GaitOptions& o, const ModelOptions& mo, int in
   if (o.parameterisation.landsWithImpact()) {
     text("landing", kLandings[1]);
     text("after_impact", kAfterImpact[o.parameterisation.hasDoubleSupport() ? 1 : 0]);
+    num("touchdown_speed_min", o.touchdown_speed_min);
   }
   text("rotor", kRotorModels[mo.rotor == RotorModel::Exact ? 0 : 1]);
   num("friction_smoothing", mo.friction_smoothing);

@@ -207,6 +207,7 @@ GaitParameters configuredInitialGuess(const OptimizeConfig& config, const Model&
   // A coarser start is written in the configured parameterisation without changing its motion.
   GaitOptions coarse = config.options;
   coarse.parameterisation = from;
+  if (!from.landsWithImpact()) coarse.touchdown_speed_min = 0.0;  // it lands at rest
   return toRicherParameterisation(GaitEvaluator(config.robot, coarse, config.model_options), p,
                           config.options.parameterisation);
 }

@@ -91,6 +91,18 @@ void writeBetweenNodes(JsonWriter& w, const GaitEvaluator& ev, const BetweenNode
   w.endObject();
 }
 
+// Only for a step evaluated without dry friction on a robot that has some.
+void writeRobotFriction(JsonWriter& w, const GaitEvaluator& ev, const RobotFrictionCheck& c) {
+  if (!c.checked) return;
+  w.key("robot_friction").beginObject();
+  w.key("group").value(ev.layout()[c.worst_group].name);
+  w.key("excess").value(c.excess);
+  w.key("unit").value(ev.layout()[c.worst_group].unit);
+  w.key("satisfied").value(c.met);
+  w.key("message").value(robotFrictionMessage(ev.layout(), c));
+  w.endObject();
+}
+
 }  // namespace
 
 void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitParameters& p,
@@ -114,6 +126,7 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
   for (const std::string& name : verdict.unmet_groups) w.value(name);
   w.endArray();
   w.key("feasibility_tolerance").value(kFeasibilityTolerance);
+  writeRobotFriction(w, ev, verdict.robot_friction);
   writeBetweenNodes(w, ev, verdict.between_nodes, e.motion_computed);
   w.key("motion_computed").value(e.motion_computed);
   w.key("numerically_undefined").value(e.numerically_undefined);
@@ -206,6 +219,7 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
   if (o.parameterisation.landsWithImpact()) {
     w.key("landing").value("impact");
     w.key("after_impact").value(afterImpactName(o.parameterisation.landing));
+    w.key("touchdown_speed_min").value(o.touchdown_speed_min);
   }
   const ModelOptions& mo = ev.model().options;
   w.key("rotor").value(mo.rotor == RotorModel::Exact ? "exact" : "high_gear");

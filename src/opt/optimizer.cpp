@@ -268,6 +268,7 @@ void classify(const FeasibilityVerdict& v, NlpStatus solver_status, Optimization
   r.unmet_level = v.failed_level;
   r.unmet_constraints = v.unmet_groups;
   r.between_nodes_worst = v.between_nodes.worst_scaled;
+  r.robot_friction = v.robot_friction;
   if (!v.feasible) r.status = OptimizationStatus::Infeasible;
   else if (solver_status == NlpStatus::Solved) r.status = OptimizationStatus::Optimal;
   else if (solver_status == NlpStatus::MaxIterations) r.status = OptimizationStatus::MaxIter;

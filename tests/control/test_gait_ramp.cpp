@@ -64,17 +64,17 @@ TEST_CASE("A sample violating the friction cone is reported with its time and st
   const std::vector<WalkStepMotion> walk{{step, true}};
   PlannedSample s{0.25, 0, 0.0, true,
                   sampleTrajectoryAt(f.evaluator, f.evaluation, Phase::SingleSupport, 0.1)};
-  s.row.R1 = Vec2(300.0, 200.0);  // |Rx| − 0.8 Rz = 140 N
+  s.row.R1 = Vec2(300.0, 200.0);  // |Rx| − 0.6 Rz = 180 N (the gait's friction coefficient)
   const std::vector<ConstraintMaximum> m = sampleConstraintMaxima(f.evaluator, walk, {s});
   const std::vector<ConstraintMaximum> bad = violations(m, {});
   REQUIRE(bad.size() == 1);
   CHECK(bad[0].name == "friction_cone_ss");
-  CHECK(bad[0].value == Approx(140.0).margin(1e-9));
+  CHECK(bad[0].value == Approx(180.0).margin(1e-9));
   CHECK(bad[0].t == 0.25);
   // The gait's own level is tolerated, +1 % (kRampRelativeTolerance), not more.
-  CHECK(violations(m, {{"friction_cone_ss", "N", 140.0, 0.0, 0}}).empty());
-  CHECK(violations(m, {{"friction_cone_ss", "N", 138.7, 0.0, 0}}).empty());
-  CHECK(violations(m, {{"friction_cone_ss", "N", 138.5, 0.0, 0}}).size() == 1);
+  CHECK(violations(m, {{"friction_cone_ss", "N", 180.0, 0.0, 0}}).empty());
+  CHECK(violations(m, {{"friction_cone_ss", "N", 178.3, 0.0, 0}}).empty());
+  CHECK(violations(m, {{"friction_cone_ss", "N", 178.1, 0.0, 0}}).size() == 1);
 }
 
 TEST_CASE("Ramp start rates: slowest walkable first and last, linear in alphad squared",

@@ -35,7 +35,7 @@ struct SplineData {
 };
 
 GaitOptions withBasis(int ss, int ds, PathBasis basis) {
-  GaitOptions o;
+  GaitOptions o = test::viscousOptions();
   o.parameterisation.ss_points = ss;
   o.parameterisation.ds_points = ds;
   o.parameterisation.basis = basis;

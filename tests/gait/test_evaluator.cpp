@@ -409,7 +409,7 @@ TEST_CASE("the alphadot_iSS saturation (3.56) lets the SS pass over the foot", "
 TEST_CASE("C_Gamma has converged with the default quadrature", "[gait]") {
   const GaitParameters p = definedStep();
   const GaitEvaluation<double> coarse = defaultGaitEvaluator().evaluate(p);
-  GaitOptions fine_options;
+  GaitOptions fine_options = test::viscousOptions();
   fine_options.ss_nodes = 96;
   fine_options.ds_nodes = 48;
   const GaitEvaluation<double> fine = defaultGaitEvaluator(fine_options).evaluate(p);
@@ -435,7 +435,7 @@ TEST_CASE("DS distributions minimise their own criterion pointwise", "[gait]") {
   // Same motion, only R2x differs in DS: at every DS sample the energy rule (3.71)–(3.75)
   // gives no larger electrical power max(0, P) than the torque rule (3.68)–(3.70), and the
   // torque rule no larger Γ*ᵀΓ*.
-  GaitOptions energy;
+  GaitOptions energy = test::viscousOptions();
   energy.ds_distribution = DsDistribution::Energy;
   const GaitEvaluator et = test::defaultGaitEvaluator(), ee = test::defaultGaitEvaluator(energy);
   const GaitEvaluation<double> t = et.evaluate(test::optimalStep());
@@ -473,7 +473,7 @@ TEST_CASE("a motion that overflows is undefined at level 4, never NaN", "[gait]"
       1.5207864380756257, -1.4437546173990962e-06, 0.059999795817441332, -1.1250027541370575,
       0.29945717215519196, 0.30018556938440627, 0.30024228850281709, 0.29982065456277085,
       0.11999763446337594;
-  GaitOptions no_margin;
+  GaitOptions no_margin = test::viscousOptions();
   no_margin.ds_alpha_range_min = 0.0;
   const GaitEvaluator ev = test::defaultGaitEvaluator(no_margin);
   const GaitEvaluation<double> e = ev.evaluate(p);

@@ -1,7 +1,8 @@
 // Gaits landing with an impact (gait/impact_landing.hpp): exact gradients through the impact,
 // cyclicity through the impact and the leg exchange, the energy balance of the cycle, the
 // consistency constraint against an independent enumeration of the impact behaviours, the
-// gait files, and the default (zero-velocity) landing left as it was.
+// gait files, the default (zero-velocity) landing left as it was, and the touchdown at a
+// minimum foot speed (gait/constraints/touchdown_speed.hpp).
 #include <catch2/catch.hpp>
 
 #include <cstdio>
@@ -14,7 +15,10 @@
 #include "gaitopt/io/summary_file.hpp"
 #include "gaitopt/gait/trajectory.hpp"
 #include "gaitopt/io/gait_file.hpp"
+#include "gaitopt/gait/feasibility.hpp"
+#include "gaitopt/model/chain_kinematics.hpp"
 #include "gaitopt/model/dynamics_pinned.hpp"
+#include "test_default_gait.hpp"
 #include "test_files.hpp"
 #include "test_gait_support.hpp"
 #include "test_gradient_check.hpp"
@@ -35,6 +39,12 @@ GaitEvaluator chevallereauEvaluator(const GaitOptions& o) {
   return GaitEvaluator(test::robotFile("rabbit_chevallereau_aoustin"), o);
 }
 
+GaitOptions touchdownOptions(double v_min) {
+  GaitOptions o = impactOptions(Landing::ImpactSingleSupport);
+  o.touchdown_speed_min = v_min;
+  return o;
+}
+
 // A defined step of the C&A robot landing with impact, then single support, at 0.75 m/s (the
 // entries α_fDS … δ2*_iSS and T_DS are not read by this gait family).
 GaitParameters singleSupportImpactStep() {
@@ -49,6 +59,14 @@ GaitParameters singleSupportImpactStep() {
 std::string withoutIndex(const std::string& name) { return name.substr(0, name.find('[')); }
 
 Vec5 pinnedFromFloating(const Vector7<double>& Xd) { return Xd.head<5>(); }
+
+// Vertical velocity of the swing foot at the end of the single support, from the sampled
+// motion q, q̇ and the pinned chain's foot-2 Jacobian (not from the landing's impact system).
+double swingFootVz(const GaitEvaluator& ev, const GaitEvaluation<double>& e) {
+  const TrajectoryRow r = sampleTrajectoryAt(ev, e, Phase::SingleSupport, e.T_SS);
+  const Model& m = ev.model();
+  return (chainPointJacobian(m, m.pinned.foot2, chainState(m, r.q, r.qd)) * r.qd)(1);
+}
 
 TEST_CASE("impact landing: the step is defined and its impact unique", "[gait][impact_gait]") {
   const GaitEvaluator ev = chevallereauEvaluator(impactOptions(Landing::ImpactSingleSupport));
@@ -276,4 +294,73 @@ TEST_CASE("the start-rate group's unit follows its row: rad/s with DS, (rad/s)^2
   CHECK(test::defaultGaitEvaluator().layout()[kAlphadotNegative].unit == "rad/s");
   CHECK(single.layout()[kTorqueSS].unit == "N m");
   CHECK(single.layout()[kNoFallBack].unit == "(rad/s)^2");
+}
+
+TEST_CASE("touchdown_speed: V2z at touchdown plus the bound, from the sampled motion",
+          "[gait][touchdown_speed]") {
+  const double v_min = 0.5;
+  const GaitEvaluator ev = chevallereauEvaluator(touchdownOptions(v_min));
+  const GaitEvaluation<double> e = ev.evaluate(singleSupportImpactStep());
+  REQUIRE(e.motion_computed);
+  const ConstraintGroup& g = ev.layout()[kTouchdownSpeed];
+  REQUIRE(g.count == 1);
+  CHECK(g.unit == "m/s");
+  CHECK(g.level == 5);
+  CHECK(constraintGroupScale(kTouchdownSpeed, ev.model()) == 1.0);
+  CHECK(e.state[g.offset] == ConstraintState::Defined);
+  const double vz = swingFootVz(ev, e);
+  CHECK(vz < 0.0);  // the foot arrives moving down (2.2)
+  CHECK(e.g[g.offset] == Approx(vz + v_min).margin(1e-9));
+}
+
+TEST_CASE("touchdown_speed: exact gradient equals finite differences",
+          "[gait][touchdown_speed][derivatives]") {
+  const GaitEvaluator ev = chevallereauEvaluator(touchdownOptions(0.5));
+  const GaitParameters p = singleSupportImpactStep();
+  const GaitGradient grad = ev.evaluateWithGradient(p);
+  const int k = ev.layout()[kTouchdownSpeed].offset;
+  const test::GradientCheck r = test::checkGradient(
+      ev, p,
+      {{"touchdown_speed", [k](const GaitEvaluation<double>& e) { return e.g[k]; },
+        grad.dg.row(k).transpose()}},
+      [](const std::string& name) { return name; });
+  INFO(r.failures);
+  CHECK(r.failed == 0);
+  CHECK(r.skipped == 0);
+  int used = 0;
+  for (int i = 0; i < p.size(); ++i) used += ev.options().parameterisation.isUsed(i) ? 1 : 0;
+  CHECK(r.checked == used);
+  CHECK(grad.dg.row(k).norm() > 0.0);
+}
+
+TEST_CASE("touchdown_speed: present only with an impact and a bound, refused otherwise",
+          "[gait][touchdown_speed]") {
+  CHECK_FALSE(chevallereauEvaluator(touchdownOptions(0.0)).layout().has(kTouchdownSpeed));
+  CHECK_FALSE(test::defaultGaitEvaluator().layout().has(kTouchdownSpeed));
+  GaitOptions zero_velocity;
+  zero_velocity.touchdown_speed_min = 0.5;
+  CHECK_THROWS_WITH(test::defaultGaitEvaluator(zero_velocity),
+                    Catch::Matchers::Contains("touchdown_speed_min needs a landing with impact"));
+
+  test::ScratchDir scratch("touchdown_speed");
+  const std::string path =
+      scratch.write(gaitYaml(test::sourcePath("configs/robot/rabbit_chevallereau_aoustin.yaml"),
+                             singleSupportImpactStep(), touchdownOptions(0.5), ModelOptions{}));
+  CHECK(loadGaitFile(path).options.touchdown_speed_min == 0.5);
+  const std::string bad = scratch.write(
+      "robot: " + test::sourcePath("configs/robot/rabbit_miossec.yaml") +
+      "\nparameters: {}\noptions:\n  touchdown_speed_min: 0.5\n");
+  test::requireConfigError([](const std::string& f) { loadGaitFile(f); }, bad,
+                           "options.touchdown_speed_min", 4, "needs 'landing: impact'");
+}
+
+TEST_CASE("the shipped touchdown-speed gait meets the ground at least at its bound",
+          "[gait][touchdown_speed]") {
+  const test::ShippedGait f("configs/gait/default_impact.yaml");
+  const double v_min = f.gait.options.touchdown_speed_min;
+  // A vertical tracking error of 1 mm moves touchdown by at most 2 ms.
+  REQUIRE(v_min >= 1e-3 / 2e-3);
+  REQUIRE(f.evaluation.motion_computed);
+  CHECK(feasibilityVerdict(f.evaluator, f.gait.parameters, f.evaluation).feasible);
+  CHECK(swingFootVz(f.evaluator, f.evaluation) <= -v_min + 1e-6);
 }

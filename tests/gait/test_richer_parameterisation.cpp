@@ -11,7 +11,7 @@ using namespace gaitopt;
 
 namespace {
 GaitOptions richer(int ss, int ds) {
-  GaitOptions o;
+  GaitOptions o = test::viscousOptions();
   o.parameterisation.ss_points = ss;
   o.parameterisation.ds_points = ds;
   return o;

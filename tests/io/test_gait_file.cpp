@@ -92,6 +92,7 @@ TEST_CASE("the shipped example gait file loads and defines a step", "[gait_io]")
   GaitOptions defaults;
   defaults.sample_rate = 1000.0;
   defaults.target_speed = 0.5;  // written by gaitopt optimize from configs/default.yaml
+  defaults.friction_coefficient = 0.6;  // the playback margin of configs/default.yaml
   requireSameOptions(g.options, defaults);
   CHECK(g.model_options.rotor == gaitopt::RotorModel::Exact);
   CHECK(g.model_options.friction_smoothing == ModelOptions{}.friction_smoothing);

@@ -10,7 +10,7 @@
 using namespace gaitopt;
 
 TEST_CASE("active-set Newton closes a slightly infeasible optimum", "[optimize][closing]") {
-  GaitOptions o;
+  GaitOptions o = test::viscousOptions();
   o.target_speed = 0.5;
   const GaitEvaluator ev = test::defaultGaitEvaluator(o);
   GaitEvaluationCache cache(ev);
@@ -45,7 +45,7 @@ TEST_CASE("active-set Newton closes a slightly infeasible optimum", "[optimize][
 // step lowering the violation (that entry keeps it at `interior`) and the closing was
 // refused as "not feasible" where it had already met every constraint.
 TEST_CASE("active-set Newton is judged where its steps stop", "[optimize][closing]") {
-  GaitOptions o;
+  GaitOptions o = test::viscousOptions();
   o.target_speed = 0.5;
   const GaitEvaluator ev = test::defaultGaitEvaluator(o);
   GaitEvaluationCache cache(ev);

@@ -41,9 +41,14 @@ Run optimizeConfig(const std::string& name, const Adjust& adjust) {
   return {config, ev, r};
 }
 
-// The same on a grid of the given size, with or without the between-node rows.
+// The same on a grid of the given size, with or without the between-node rows, under the
+// conditions these behaviours were found in: viscous joint friction only (the robot's Coulomb
+// friction set to 0) and the whole friction cone (the shipped configurations plan with dry
+// friction and friction_coefficient 0.6).
 Run optimizeConfig(const std::string& name, int ss_nodes, int ds_nodes, bool between_nodes) {
   return optimizeConfig(name, [&](OptimizeConfig& config) {
+    config.robot.coulomb.fill(0.0);
+    config.options.friction_coefficient = 0.8;
     config.options.ss_nodes = ss_nodes;
     config.options.ds_nodes = ds_nodes;
     config.solver.between_nodes = between_nodes;

@@ -16,6 +16,7 @@
 #include "gaitopt/opt/hessian_modification.hpp"
 #include "gaitopt/opt/optimizer.hpp"
 #include "test_support.hpp"
+#include "test_viscous_config.hpp"
 
 using gaitopt::MatrixX;
 using gaitopt::VectorX;
@@ -173,7 +174,9 @@ TEST_CASE("ipopt: damped BFGS keeps the secant condition and positive definitene
 // Ipopt with its default settings (SolverSettings) and SLSQP from the same start reach the same
 // optimum. Light: from the shipped optimum moved by 1 % of each parameter's scale.
 TEST_CASE("ipopt: Ipopt and SLSQP reach the same optimum on the default problem", "[ipopt]") {
-  const gaitopt::OptimizeConfig config = gaitopt::loadOptimizeConfig(sourcePath("configs/default.yaml"));
+  // With dry friction Ipopt ends 0.37 % below SLSQP (README, "Joint friction and the friction
+  // margin of the shipped configurations"); the agreement below is the viscous problem's.
+  const gaitopt::OptimizeConfig config = gaitopt::test::viscousConfig("default.yaml");
   const gaitopt::GaitEvaluator ev(config.robot, config.options, config.model_options);
   gaitopt::GaitParameters start = gaitopt::configuredInitialGuess(config, ev.model());
   if (gaitopt::test::lightTests())

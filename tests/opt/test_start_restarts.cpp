@@ -14,6 +14,7 @@
 #include "gaitopt/opt/random_start.hpp"
 #include "gaitopt/opt/start_restarts.hpp"
 #include "test_support.hpp"
+#include "test_viscous_config.hpp"
 
 namespace {
 
@@ -21,7 +22,7 @@ struct ConfigProblem {
   gaitopt::OptimizeConfig config;
   gaitopt::GaitEvaluator evaluator{config.robot, config.options, config.model_options};
   explicit ConfigProblem(const std::string& name)
-      : config(gaitopt::loadOptimizeConfig(gaitopt::test::sourcePath("configs/" + name))) {}
+      : config(gaitopt::test::viscousConfig(name)) {}
   gaitopt::OptimizationRequest request() const {
     gaitopt::OptimizationRequest r = gaitopt::optimizationRequest(
         config, gaitopt::configuredInitialGuess(config, evaluator.model()));

@@ -26,7 +26,9 @@ using gaitopt::test::lines;
 namespace {
 
 const gaitopt::GaitEvaluator& evaluator() {
-  static const gaitopt::GaitEvaluator ev = gaitopt::test::defaultGaitEvaluator();
+  // The default options (dry friction): the verdict then has no robot friction to add.
+  static const gaitopt::GaitEvaluator ev =
+      gaitopt::test::defaultGaitEvaluator(gaitopt::GaitOptions{});
   return ev;
 }
 

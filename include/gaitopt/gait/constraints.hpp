@@ -26,6 +26,8 @@ enum ConstraintGroupId : int {
   kTorqueDS, kJointLimitsDS, kFrictionConeDS, kNormalForceDS, kDsMonotone,
   // Landing with an impact (gait/impact_landing.hpp): level 1, and level 3 for the orbit.
   kImpactArrival, kImpactConsistency, kImpactRateRatio, kImpactOrbit,
+  // Touchdown at a minimum downward foot speed (GaitOptions::touchdown_speed_min): level 5.
+  kTouchdownSpeed,
   kNumConstraintGroups
 };
 

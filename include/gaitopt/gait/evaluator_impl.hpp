@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gaitopt/gait/boundary_geometry.hpp"
+#include "gaitopt/gait/constraints/touchdown_speed.hpp"
 #include "gaitopt/gait/criteria_quadrature.hpp"
 #include "gaitopt/gait/ds_path.hpp"
 #include "gaitopt/gait/evaluation_context.hpp"
@@ -55,6 +56,9 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
     ssConstraintValues(c, k, nss, s, layoutWriter(c, st));
     setIntegrands(c.model, s, k, ad, ss_int);  // dt = dα / α̇ (3.29)
   }
+  if (c.layout.has(kTouchdownSpeed))  // the arriving foot's speed at the SS end's rate
+    c.set(kTouchdownSpeed, 0,
+          touchdownSpeedRow(S(mo.landing.v2_minus(1)), mo.alphadot_fSS, o.touchdown_speed_min), st);
   const std::array<S, 4> ss_total = ssCriteria(c, pts, ss_int);
   c.out.ss_criteria_kinks = static_cast<int>(c.out.criteria_kinks.size());
   // Without DS the impact's energy loss is resupplied by the motors within the SS (cyclicity).

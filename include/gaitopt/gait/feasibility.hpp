@@ -3,7 +3,8 @@
 // optimiser's status: every computed constraint entry within kFeasibilityTolerance × its
 // group's scale (gait/constraints.hpp), the speed within kFeasibilityTolerance m/s of its
 // target, and the semi-infinite constraints (3.36)–(3.50) also between the grid nodes, checked
-// on grids kBetweenNodesRefinement times finer.
+// on grids kBetweenNodesRefinement times finer; without dry friction, the torque envelope also
+// with the robot's whole friction (the torque the exported feedforward asks for).
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,6 +27,22 @@ struct BetweenNodesCheck {
 
 BetweenNodesCheck checkBetweenNodes(const GaitEvaluator& evaluator, const GaitParameters& p);
 
+// A step evaluated without dry friction (GaitOptions::dry_friction false) bounds a Γ* without
+// the robot's Coulomb friction, which the exported feedforward adds: its torque envelope rows
+// (torque_envelope_ss, torque_envelope_ds) evaluated again with the robot's whole friction, at
+// the nodes and on the 10× finer grids.
+struct RobotFrictionCheck {
+  bool checked = false;  // dry friction off, the robot has Coulomb friction, the motion computed
+  int worst_group = -1;  // the torque group with the largest excess
+  double excess = 0.0;   // its largest Γ* − Γmax [N·m] (≤ 0: within the envelope)
+  bool met = true;       // excess within kFeasibilityTolerance × the group's scale
+};
+
+RobotFrictionCheck checkRobotFriction(const GaitEvaluator& evaluator, const GaitParameters& p);
+// "torque_envelope_ss exceeds the torque envelope by 16.5 N m with the robot's Coulomb friction
+// (dry_friction: false)"; empty when the check is met or was not made.
+std::string robotFrictionMessage(const ConstraintLayout& layout, const RobotFrictionCheck& c);
+
 struct FeasibilityVerdict {
   bool feasible = false;
   int failed_level = -1;  // lowest level with an unmet constraint (5 for the speed), −1: none
@@ -36,6 +53,7 @@ struct FeasibilityVerdict {
   double worst_scaled = 0.0;
   std::optional<double> speed_error;
   BetweenNodesCheck between_nodes;  // computed only when the motion is
+  RobotFrictionCheck robot_friction;  // an unmet check makes its group unmet at level 5
 };
 
 // `speed`: the target speed, if any (the optimiser's request, or options.target_speed).

@@ -19,7 +19,11 @@ struct GaitOptions {
   double friction_coefficient = 0.8;  // ground f (gap #1: Ch. 2 calls 1 a rarely exceeded value)
   double clearance_height = 0.03;     // z_max of the clearance parabola (3.49) [m] (gap #2)
   double min_normal_force = 20.0;     // R_iz ≥ 20 N, Fig. 3.11 caption (gap #3)
-  bool dry_friction = false;          // include Coulomb friction (smooth sign) in Γ*
+  // Include the robot's Coulomb friction Γs (smooth sign, model/joint_friction.hpp) in Γ*, as
+  // the exported feedforward does: the torque envelope then holds for the torque the motors
+  // are asked for. false: viscous friction only (the §3.6 results); the feasibility verdict
+  // still checks the envelope with the robot's whole friction (gait/feasibility.hpp).
+  bool dry_friction = true;
   DsDistribution ds_distribution = DsDistribution::Torque;
   double sample_rate = 1000.0;        // trajectory.csv rate [Hz]
   // Semi-infinite constraints and quadratures use Chebyshev–Lobatto grids of n+1 points
@@ -44,6 +48,10 @@ struct GaitOptions {
   double joint_limit_margin = 0.0;    // on (3.39), (3.42) [rad]
   bool full_torque_envelope = true;   // (3.47) with its sloped parts, not only the 140 N·m plateau
   double target_speed = 0.0;          // > 0: report the speed constraint (3.50) [m/s]
+  // > 0 (landing: impact only): the swing foot reaches the ground moving down at least this
+  // fast [m/s], so that a vertical tracking error Δz moves touchdown by at most Δz / this
+  // (gait/constraints/touchdown_speed.hpp).
+  double touchdown_speed_min = 0.0;
 };
 
 }  // namespace gaitopt

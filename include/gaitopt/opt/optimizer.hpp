@@ -12,6 +12,7 @@
 
 #include "gaitopt/opt/evaluation_cache.hpp"
 #include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/gait/feasibility.hpp"
 #include "gaitopt/opt/gait_problem.hpp"
 #include "gaitopt/opt/nlp_solver.hpp"
 
@@ -91,6 +92,9 @@ struct OptimizationResult {
   std::vector<std::string> unmet_constraints;
   // Worst scaled phase-wise value on the 10× finer check (gait/feasibility.hpp).
   double between_nodes_worst = 0.0;
+  // Without dry friction: the torque envelope with the robot's Coulomb friction (its message
+  // names the group and the excess; gait/feasibility.hpp).
+  RobotFrictionCheck robot_friction;
   std::vector<StageReport> stages;
 };
 

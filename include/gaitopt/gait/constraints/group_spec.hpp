@@ -19,6 +19,7 @@ enum class ConstraintPresence : unsigned char {
   WithImpact,            // one entry when the step lands with an impact
   WithoutImpact,         // one entry when it lands without
   ImpactSlacks,          // the landing's behaviour slacks (landingImpactSlackCount)
+  WithTouchdownSpeed,    // one entry when it lands with an impact at a minimum foot speed
 };
 
 struct ConstraintGroupSpec {
