@@ -243,9 +243,10 @@ constexpr int kTableIntervals = 100;
 // error of linear interpolation between grid points (checked at the midpoints).
 void writeFeedforwardTable(JsonWriter& w, const Model& model, const GaitMotion<double>& mo,
                            Phase phase) {
-  const auto [alpha_start, alpha_end] = phaseAlphaRange(mo, phase);
+  // A pair, not a structured binding: C++17 lambdas cannot capture those.
+  const std::pair<double, double> range = phaseAlphaRange(mo, phase);
   const auto at = [&](double s) {
-    const double alpha = alpha_start + s * (alpha_end - alpha_start);
+    const double alpha = range.first + s * (range.second - range.first);
     const FeedforwardTerms t = feedforwardTerms(model, mo, phase, alpha);
     return std::array<Vec4, 5>{t.B, t.C, t.G, t.dphi_ds, t.phi};
   };
