@@ -106,7 +106,7 @@ void Walker::switchPhase(const WalkerState& s) {
   const bool on_rate = std::abs(qd(0) - target) <= options_.lift_off_rate_tolerance * std::abs(target);
   const bool ended = options_.ds_control == DsAlphaControl::Cubic
                          ? s.t >= ds_.t_end
-                         : past_end && (on_rate || s.t - phase_start_ >= options_.lift_off_timeout * mo.T_DS);
+                         : past_end && (on_rate || s.t - phase_start_ >= mo.T_DS);
   if (ended || s.t - rear_contact_ >= options_.rear_lift_time) {
     phase_ = WalkerPhase::SingleSupport;
     phase_start_ = s.t;

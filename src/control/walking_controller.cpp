@@ -188,7 +188,7 @@ DsInputs timeOptimalDsInputs(const WalkingController& s, const DsReference& ds, 
       s.controller, mo,
       {s.options.friction_coefficient, s.options.min_normal_force, s.options.full_torque_envelope},
       q(0), qd(0));
-  double alphadd = c.slope * qd(0) + s.options.ds_rate_gain * (c.alphad - qd(0));  // α̈_c on the curve
+  double alphadd = c.slope * qd(0) + kTimeOptimalGain * (c.alphad - qd(0));  // α̈_c on the curve
   if (b.defined) alphadd = std::clamp(alphadd, b.min, b.max);                // (4.1)
   DsInputs in;
   in.v_d << alphadd, Eigen::Vector2d(-k.kp * y - k.kd * yd);

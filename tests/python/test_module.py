@@ -326,11 +326,25 @@ def test_errors(scratch):
     check(message is not None and missing in message, f"optimize(missing file): {message!r}")
 
 
+def test_viscous_quadrature(scratch):
+    """Without dry friction the criteria's integrands are resolved by the default grids: C_Gamma
+    equals the torques' quadrature to 2e-6 (the 7e-3 of check_trajectory is dry friction's)."""
+    text = open(GAIT, encoding="utf-8").read().replace("dry_friction: true", "dry_friction: false")
+    lines = [f"robot: {ROBOT}" if line.startswith("robot:") else line for line in text.splitlines()]
+    path = os.path.join(scratch, "viscous_step.yaml")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write("\n".join(lines) + "\n")
+    e = gaitopt.GaitEvaluator(gaitopt.Gait(path)).evaluate()
+    check(e.defined, "viscous step: defined")
+    check_trajectory("evaluate(dry_friction: false)", e, load_yaml(ROBOT), {"dry_friction": False}, 20000.0)
+
+
 def main(binary):
     with tempfile.TemporaryDirectory(prefix="gaitopt_python_") as scratch:
         test_robot()
         test_gait()
         test_evaluate()
+        test_viscous_quadrature(scratch)
         test_optimize(binary, scratch)
         test_export(scratch)
         test_impact()

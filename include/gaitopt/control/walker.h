@@ -61,7 +61,12 @@ typedef struct {
  * (nothing else is read).
  * options: NULL for the defaults, or a YAML mapping overriding any of these keys:
  *   gain_scale     default 1: scales the PD gains of the outputs in the phase domain
- *   ----- further keys: the list is completed with the controller -----
+ *                  (Kp = gain_scale bandwidth², Kd = gain_scale 2 bandwidth), > 0
+ *   bandwidth      default 40: the outputs' bandwidth ω [rad/s], > 0
+ *   ds_control     default time_optimal: double-support control of α, time_optimal
+ *                  (the cyclic curve at the bounds of the LPs (4.14)) or cubic
+ *   torque_limits  default true: project the inputs on the torque envelope and the
+ *                  contact constraints
  * An unknown key, a value of the wrong type or out of range is an error.
  * Returns NULL on failure and then, unless error is NULL, writes a NUL-terminated message
  * naming the file (or the options key) and the problem into error, truncated to

@@ -35,9 +35,8 @@ struct WalkerOptions : ControllerOptions {
   // are the contact's chatter at the front foot's touchdown.
   double rear_lift_time = 0.02;
   // Time-optimal DS: lift-off past α_fDS once α̇ is within this fraction of its target, or
-  // lift_off_timeout × T_DS after the touchdown (walker.cpp).
+  // T_DS after the touchdown (walker.cpp).
   double lift_off_rate_tolerance = 0.05;
-  double lift_off_timeout = 1.0;
   // Step-to-step speed regulation: after each step the relative error of its mean speed
   // (stance foot to stance foot over the touchdown period) is summed, and the double support's
   // target rates are scaled by 1 − speed_gain × the sum, within ±max_rate_correction: an
@@ -106,8 +105,6 @@ class Walker {
   bool fallen(const WalkerState& s, const Vec5& q) const;
   double stanceFootX(const WalkerState& s) const;  // world x of leg 1's foot
   double rateScale(const WalkerState& s);          // after a touchdown: the DS's rate scale
-public:
-  double speedErrorSum() const { return speed_error_sum_; }
 };
 
 // Pinned coordinates q = (α, δ1..δ4) and rates of the measured state with `leg1` as leg 1

@@ -52,7 +52,6 @@ struct ControllerOptions {
   // thesis' freeze, §4.3.1.3, made C¹).
   bool hold_references_past_fss = false;
   DsAlphaControl ds_control = DsAlphaControl::Cubic;
-  double ds_rate_gain = kTimeOptimalGain;  // k [1/s] of the time-optimal law (4.1)
 };
 
 struct PdGains {
