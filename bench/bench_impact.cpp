@@ -7,7 +7,7 @@
 //   bench_impact [--json FILE] [--batch N] [--repeats N] [--help]
 //
 // Cases cycle through 2 double-support configurations (walking-like and legs-spread, see the
-// README) × 36 arrival directions θ ∈ (−180°, 0°) × μ ∈ {0.3, 0.7, 1.2}. Targets: median
+// docs/commands/impact.md) × 36 arrival directions θ ∈ (−180°, 0°) × μ ∈ {0.3, 0.7, 1.2}. Targets: median
 // ≤ 20 µs per algebraic and per differential solve.
 #include <cmath>
 #include <cstdio>

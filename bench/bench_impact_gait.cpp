@@ -1,4 +1,4 @@
-// bench_impact_gait: cost of the gaits that land with an impact (README, "Gaits with impact"):
+// bench_impact_gait: cost of the gaits that land with an impact (docs/science/impact-gaits.md):
 // one evaluation and one evaluation with the exact gradient (AD through the impact map) of the
 // shipped C&A impact step (configs/gait/chevallereau_aoustin_0.75_impact.yaml), and the wall
 // time of the whole optimisation configs/chevallereau_aoustin_0.75_impact.yaml (staged SLSQP

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Configures and builds build-san/: clang, AddressSanitizer + UndefinedBehaviorSanitizer, -O2
-# without debug information, libFuzzer coverage instrumentation (README, "Reliability"). Builds
+# without debug information, libFuzzer coverage instrumentation (docs/reliability.md). Builds
 # only what the sanitizer test pass and the fuzz runs need: the CLI (the tests call it),
 # gaitopt_tests, mujoco_walk when MuJoCo is found (a ctest entry runs it) and every
 # fuzz/fuzz_*.cpp harness; no benchmarks, other examples or Python module.

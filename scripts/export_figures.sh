@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Figures of the controller export (README "gaitopt export"), measured: rows and file sizes of
+# Figures of the controller export (docs/commands/export.md), measured: rows and file sizes of
 # a 20-step export at 1 kHz (CSV and JSON), the largest relative error of the recomposition
 # tau = B sdd + C sd^2 + G + K + F over its rows, and the RMS difference of the feedforward
 # between the exact and the high-gear rotor models per physical joint.

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer harnesses of fuzz/ (clang, -fsanitize=fuzzer,address,undefined) in
 # build-san/, the build directory the sanitizer test pass shares (scripts/build_san.sh), and runs
-# each one in turn at nice 10, seeded from the shipped files (README, "Reliability").
+# each one in turn at nice 10, seeded from the shipped files (docs/reliability.md).
 #   scripts/fuzz.sh                 # >= 10^6 executions per harness (default RUNS=1000000)
 #   scripts/fuzz.sh --smoke [SEC]   # about SEC seconds per harness (default 20), as in CI
 # HARNESSES="fuzz_robot_yaml ..." runs only those (e.g. one per core in parallel).

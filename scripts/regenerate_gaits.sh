@@ -4,7 +4,7 @@
 # from (one after the other, in the order of their dependencies: a configuration that starts
 # from a gait file runs after it), writes the result's gait.yaml to configs/gait/<name>.yaml
 # under a header saying how it was made and what it measured, and prints a markdown table of
-# status, C_Gamma, iterations and wall time (the README's figures for configs/).
+# status, C_Gamma, iterations and wall time (the figures of docs/formats/optimizer-config.md, "Shipped configurations").
 #
 #   scripts/regenerate_gaits.sh [name ...]     (default: every entry below)
 #

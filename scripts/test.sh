@@ -3,7 +3,7 @@
 # suite under AddressSanitizer + UndefinedBehaviorSanitizer in build-san/ (clang, -O2, slow
 # optimisation tests in their light form, GAITOPT_TEST_LIGHT=1), and a libFuzzer smoke run of
 # every reader from that same build directory (scripts/fuzz.sh --smoke, FUZZ_SECONDS per
-# harness, default 20). SANITIZE=0 or FUZZ=0 skip those two passes (README, "Reliability", for
+# harness, default 20). SANITIZE=0 or FUZZ=0 skip those two passes (docs/reliability.md, for
 # their measured time). Prints the time of each part; exits non-zero if any part fails.
 set -euo pipefail
 

@@ -3,7 +3,7 @@
 `gaitopt export` CSV, with the planned ground reactions as arrows at the feet.
 
 Reads the export's columns only (t, phase, x/z_hip, trunk_angle, phi_hip_J, phi_knee_J,
-foot_*, R_*); the knees are placed where the femur and tibia directions of the README's angle
+foot_*, R_*); the knees are placed where the femur and tibia directions of docs/conventions.md's angle
 conventions meet (θ_trunk = trunk_angle + π/2, femur = θ_trunk − φ_hip, tibia = femur − φ_knee
 − π), so no link length is needed; the trunk is drawn TRUNK_DRAW_LENGTH long. One frame every
 1/FPS s of the export's time (the nearest sample), FPS frames per second in the GIF, written

@@ -24,10 +24,10 @@ Vec5 toVec5(const std::vector<double>& v) { return Vec5(Eigen::Map<const Vec5>(v
 
 int runImpact(const ImpactArgs& args) {
   const Model model = buildModel(loadRobot(args.robot));
-  const Vec5 q = toVec5(parseNumberList("--q", args.q, 5));
+  const Vec5 q_given = toVec5(parseNumberList("--q", args.q, 5));
   const Vec5 qd = toVec5(parseNumberList("--qd", args.qd, 5));
   requireFriction("--mu", args.mu);
-  requireFoot2OnGround(model, q);
+  const Vec5 q = foot2OnGround(model, q_given, "impact");
   const double v2z = foot2VerticalVelocity(model, q, qd);
   if (!(v2z < 0.0))
     throw BadImpactInput("--qd: foot 2 vertical velocity V2z = " + shortNumber(v2z) +
@@ -38,6 +38,7 @@ int runImpact(const ImpactArgs& args) {
       solveImpactFromPinned(model, q, qd, parseImpactModel(args.model), options);
   JsonWriter w;
   w.beginObject();
+  w.key("q").value(q);  // the configuration used: --q with foot 2 projected onto the ground
   writeImpactResultFields(w, r);
   w.endObject();
   std::cout << w.str() << "\n";

@@ -65,11 +65,10 @@ std::string intervalsCsv(const Model& model, const Vec5& q, const ImpactMapReque
 int runImpactMap(const ImpactMapArgs& args) {
   const Model model = buildModel(loadRobot(args.robot));
   const std::vector<double> qv = parseNumberList("--q", args.q, 5);
-  const Vec5 q(Eigen::Map<const Vec5>(qv.data()));
   const SampleRange mu = parseSampleRange("--mu-range", args.mu_range);
   const SampleRange theta = parseSampleRange("--theta-range", args.theta_range);
   requireFriction("--mu-range", std::min(mu.a, mu.b));
-  requireFoot2OnGround(model, q);
+  const Vec5 q = foot2OnGround(model, Vec5(Eigen::Map<const Vec5>(qv.data())), "impact-map");
   requireDirectoryOrAbsent(args.out);
   ImpactMapRequest req;
   req.model = parseImpactModel(args.model);

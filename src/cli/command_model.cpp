@@ -9,7 +9,7 @@
 namespace gaitopt::cli {
 namespace {
 
-// Documented ranges of the state (README, "gaitopt model"): angles of a few turns, rates and
+// Documented ranges of the state (docs/commands/model.md): angles of a few turns, rates and
 // accelerations far beyond any gait; beyond them the model terms overflow or mean nothing.
 constexpr double kMaxAngle = 100.0;          // rad
 constexpr double kMaxRate = 1e3;             // rad/s

@@ -84,7 +84,7 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", args->out, "Output directory (created if missing)")->required();
   CLI::Option* starts =
       cmd->add_option("--random-starts", args->random_starts,
-                      "Optimise from K random starts in the box of the README around the "
+                      "Optimise from K random starts in the documented box around the "
                       "configured initial guess, and keep the best")
           ->check(CLI::Range(1, 100000));
   CLI::Option* global =

@@ -7,7 +7,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "gaitopt/io/csv_table.hpp"
-#include "gaitopt/model/dynamics_pinned.hpp"
+#include "gaitopt/model/foot_on_ground.hpp"
 
 namespace gaitopt::cli {
 namespace {
@@ -45,11 +45,18 @@ SampleRange parseSampleRange(const std::string& option, const std::string& text)
   return r;
 }
 
-void requireFoot2OnGround(const Model& model, const Vec5& q) {
-  const double z2 = pinnedTerms(model, q, Vec5(Vec5::Zero())).foot2(1);
-  if (std::abs(z2) > 1e-9)
-    throw BadImpactInput("--q: foot 2 height z2 = " + shortNumber(z2, "%.9g") +
-                         " m; an impact needs foot 2 on the ground (|z2| <= 1e-9 m)");
+Vec5 foot2OnGround(const Model& model, const Vec5& q, const char* command) {
+  const GroundProjection p = projectFoot2OnGround(model, q);
+  if (std::abs(p.height) > kFoot2HeightTolerance || !p.converged)
+    throw BadImpactInput("--q: foot 2 height z2 = " + shortNumber(p.height, "%.9g") +
+                         " m; an impact needs foot 2 on the ground (|z2| <= 1e-5 m, then "
+                         "projected onto it)");
+  if (std::abs(p.height) > kGroundProjectionTolerance)
+    std::cerr << "gaitopt " << command << ": foot 2 was " << shortNumber(p.height, "%.3g")
+              << " m off the ground: --q projected onto it (largest change "
+              << shortNumber(p.max_change, "%.3g") << " rad; the configuration used is q in the "
+              << "output)\n";
+  return p.q;
 }
 
 ImpactModelKind parseImpactModel(const std::string& text) {

@@ -25,8 +25,10 @@ struct SampleRange {
 };
 SampleRange parseSampleRange(const std::string& option, const std::string& text);
 
-// The configuration must put foot 2 on the ground: |z2| <= 1e-9 m.
-void requireFoot2OnGround(const Model& model, const Vec5& q);
+// The configuration `command` uses: q with foot 2 projected onto the ground (a note on standard
+// error when it moved), or BadImpactInput when foot 2 is more than kFoot2HeightTolerance off it.
+constexpr double kFoot2HeightTolerance = 1e-5;  // [m]: six printed decimals of the angles
+Vec5 foot2OnGround(const Model& model, const Vec5& q, const char* command);
 
 ImpactModelKind parseImpactModel(const std::string& text);
 

@@ -527,7 +527,7 @@ void writeEmbeddedFile(JsonWriter& w, const std::string& key, const std::string&
   w.endObject();
 }
 
-// How the feedforward is made and recomputed at other phase rates (README "gaitopt export").
+// How the feedforward is made and recomputed at other phase rates (docs/commands/export.md).
 void writeFeedforwardHead(JsonWriter& w, const Model& model) {
   w.key("feedforward").beginObject();
   w.key("rotor_model").value(model.options.rotor == RotorModel::Exact ? "exact" : "high_gear");

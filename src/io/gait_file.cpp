@@ -18,7 +18,7 @@ constexpr int kMaxCriteriaRefinement = 4;
 // A step lasts about a second; 100 kHz already gives ~10^5 rows per file.
 constexpr double kMaxSampleRate = 1e5;
 
-// Documented ranges of the gait options (README, "Gait files" and "Reliability"): the lower
+// Documented ranges of the gait options (docs/formats/gait-file.md and docs/reliability.md): the lower
 // bounds are those of the thesis' formulation, the upper ones refuse values that make every
 // step undefined (a friction coefficient of 1e307) or are not physical.
 namespace ranges {

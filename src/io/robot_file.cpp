@@ -19,7 +19,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kRadPerDeg = kPi / 180.0;
 
-// Documented physical ranges of every robot number (README, "Robot description files" and
+// Documented physical ranges of every robot number (docs/formats/robot-file.md and
 // "Reliability"): wide enough for any RABBIT-class biped, narrow enough to refuse typos such as
 // a mass of 1e300 or a denormal one, which would make every step undefined.
 namespace ranges {

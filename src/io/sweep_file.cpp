@@ -34,7 +34,7 @@ std::optional<double> field(bool available, double v) {
   return available ? finiteOrAbsent(v) : std::nullopt;
 }
 
-// One row of a sweep.csv, every column typed and range-checked (README, "Merging shards");
+// One row of a sweep.csv, every column typed and range-checked (docs/commands/sweep.md);
 // throws std::invalid_argument naming `where` (file:line) and the column. Returns the speed.
 double checkSweepRow(const std::vector<std::string>& f, const std::string& where) {
   const std::vector<std::string> names = splitFields(kSweepCsvHeader);

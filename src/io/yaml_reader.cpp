@@ -267,7 +267,7 @@ std::string YamlMap::string(const std::string& key) const {
 
 bool YamlMap::boolean(const std::string& key) const {
   const YAML::Node v = require(key).second;
-  // Only the spellings the README lists: YAML 1.1's yes/no/on/off are easy to write by mistake.
+  // Only the spellings the docs list: YAML 1.1's yes/no/on/off are easy to write by mistake.
   if (!v.IsScalar() || isQuoted(v) || (v.Scalar() != "true" && v.Scalar() != "false")) {
     throw error(key, "expected true or false, got " + describe(v));
   }

@@ -282,7 +282,7 @@ NlpSolution solveWithIpopt(NlpProblem& problem, const NlpSettings& settings) {
     o.SetStringValue("hessian_approximation", "limited-memory");
     o.SetStringValue("mu_strategy", "adaptive");
   } else {
-    // Tuned on the default problem with the dense Hessians (README, "Which backend"): the
+    // Tuned on the default problem with the dense Hessians (docs/formats/optimizer-config.md): the
     // monotone barrier update (Fiacco–McCormick) halved the iterations of the adaptive one,
     // which cut μ early and then spent a third of its iterations in restoration. Neighbouring
     // grid entries have nearly equal Jacobian rows, so Ipopt's least-squares initial
@@ -292,7 +292,7 @@ NlpSolution solveWithIpopt(NlpProblem& problem, const NlpSettings& settings) {
     o.SetIntegerValue("acceptable_iter", 0);
     // The KKT system (every grid entry, a dense Jacobian) costs ~90 % of Ipopt's time, in
     // MUMPS: no residual check and iterative refinement after each solve. Measured on the
-    // default problem: same iterations and optimum, 28 % less CPU time (README).
+    // default problem: same iterations and optimum, 28 % less CPU time (docs/formats/optimizer-config.md).
     o.SetStringValue("fast_step_computation", "yes");
   }
   if (!settings.warm_start.empty()) {

@@ -451,7 +451,7 @@ GaitParameters restoreFeasibility(GaitEvaluationCache& cache, const GaitParamete
                  })
           .x;
   if (!meetsAll(cache.evaluator(), req, cache.values(feasible))) return p;
-  // Re-solved with the configured backend: an Ipopt re-solve measured worse (README).
+  // Re-solved with the configured backend: an Ipopt re-solve measured worse (docs/commands/optimize.md).
   NlpStatus again = NlpStatus::Failed;
   met.push_back({feasible, NlpStatus::Failed});
   const GaitParameters q = solveFullProblem(cache, feasible, req, log, r, again, met);

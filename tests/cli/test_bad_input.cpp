@@ -1,4 +1,4 @@
-// The bad-input table of the README's "Reliability" section: for each class of bad or hostile
+// The bad-input table of docs/reliability.md: for each class of bad or hostile
 // input, the exit code, the message (file, key and line, or the option) and that nothing was
 // written or overwritten; safe writing (planted links, interrupted re-runs, --out checks).
 #include <catch2/catch.hpp>

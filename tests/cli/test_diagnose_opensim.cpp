@@ -58,7 +58,7 @@ TEST_CASE("diagnose on the shipped OpenSim trial names the foot, held out across
     const Cause& c = dg.causes[0];
     INFO("shift " << shift << ": " << effectLabel(c.effect) << " = " << c.effect.value);
     CHECK((c.effect.kind == EffectKind::RockerFoot || c.effect.kind == EffectKind::FootOffset));
-    // Of the order of roll-over-shape radii (0.3 × leg length, leg 0.98 m; README: ≈ 0.5).
+    // Of the order of roll-over-shape radii (0.3 × leg length, leg 0.98 m; docs/commands/import-opensim.md: ≈ 0.5).
     CHECK(dg.extended_robot.foot_radius > 0.2);
     CHECK(dg.extended_robot.foot_radius < 0.75);
     CHECK(dg.rms_reduction_pct[kAlphaRow] > 50.0);

@@ -6,6 +6,8 @@
 #include <regex>
 
 #include "gaitopt/impact/impact_map.hpp"
+#include "gaitopt/model/dynamics_pinned.hpp"
+#include "gaitopt/model/foot_on_ground.hpp"
 #include "impact/impact_test_support.hpp"
 #include "test_files.hpp"
 #include "test_support.hpp"
@@ -80,8 +82,37 @@ TEST_CASE("gaitopt impact: bad input exits 2 naming the problem", "[impact]") {
   Vec5 lifted = q;
   lifted(0) += 0.01;
   expectBad(" --q=" + numbers(lifted) + good_qd + " --mu 0.7", "foot 2 height z2 = ");
+  lifted(0) = q(0) + 1e-4;  // ~40 µm: beyond the projection's 1e-5 m
+  expectBad(" --q=" + numbers(lifted) + good_qd + " --mu 0.7", "(|z2| <= 1e-5 m");
   expectBad(good_q + " --qd=" + numbers(-qd) + " --mu 0.7", "V2z = 0.5");
   expectBad(good_q + good_qd + " --mu -0.1", "--mu: friction coefficient");
+}
+
+TEST_CASE("gaitopt impact: six decimals of --q are projected onto the ground", "[impact]") {
+  const Model m = test::defaultModel();
+  const Vec5 q = test::walkingImpactQ(m);
+  const Vec5 qd = pinnedVelocityForFoot2(m, q, Vec2(0.3, -0.5));
+  char typed[256];  // as a user types it: six decimals, foot 2 micrometres off the ground
+  std::snprintf(typed, sizeof typed, "%.6f,%.6f,%.6f,%.6f,%.6f", q(0), q(1), q(2), q(3), q(4));
+  Vec5 q_typed;
+  REQUIRE(std::sscanf(typed, "%lf,%lf,%lf,%lf,%lf", &q_typed(0), &q_typed(1), &q_typed(2),
+                      &q_typed(3), &q_typed(4)) == 5);
+  const double z2 = pinnedTerms(m, q_typed, Vec5(Vec5::Zero())).foot2(1);
+  REQUIRE(std::abs(z2) > 1e-9);  // the typed configuration the old 1e-9 m rule refused
+  const CliRun run =
+      runCli("impact --q=" + std::string(typed) + " --qd=" + numbers(qd) + " --mu 0.7");
+  CHECK(run.exit_code == 0);
+  CHECK_THAT(run.err, Catch::Matchers::Contains("--q projected onto it"));
+  // The configuration used is the projection, with foot 2 on the ground.
+  const std::regex re("\"q\": \\[([^\\]]+)\\]");
+  std::smatch match;
+  REQUIRE(std::regex_search(run.out, match, re));
+  Vec5 used;
+  REQUIRE(std::sscanf(match[1].str().c_str(), "%lf, %lf, %lf, %lf, %lf", &used(0), &used(1),
+                      &used(2), &used(3), &used(4)) == 5);
+  CHECK((used - projectFoot2OnGround(m, q_typed).q).norm() < 1e-14);
+  CHECK(std::abs(pinnedTerms(m, used, Vec5(Vec5::Zero())).foot2(1)) < 1e-12);
+  CHECK((used - q_typed).cwiseAbs().maxCoeff() < 1e-5);
 }
 
 TEST_CASE("gaitopt impact-map: exact theta-intervals agree with the solver", "[impact]") {

@@ -26,7 +26,7 @@ struct Refined {
 // The quadrature of the criteria is spectral on smooth integrands: these tests evaluate the
 // shipped steps with viscous joint friction only. The smooth sign tanh(ω/ε) of dry friction
 // (ε = 0.05 rad/s) is a boundary layer these grids do not resolve: on the default optimum W,
-// C_E and C_Gamma are then 1e-4 to 7e-4 off a 4× refined evaluation (README, "Gait files").
+// C_E and C_Gamma are then 1e-4 to 7e-4 off a 4× refined evaluation (docs/formats/gait-file.md).
 GaitOptions quadratureOptions(const GaitFile& g) {
   GaitOptions o = g.options;
   o.dry_friction = false;

@@ -125,7 +125,7 @@ TEST_CASE("import: after belt removal the stance foot is at rest", "[opensim_imp
   std::sort(ankle.begin(), ankle.end());
   CHECK(heel[heel.size() / 2] < 0.03);  // median |v| of the stance heel [m/s]
   // The five-link chain's ankle (IK angles, lumped lengths) does not stay on the heel: it
-  // creeps forward by about 0.1 m/s in mid-stance (README, "import-opensim").
+  // creeps forward by about 0.1 m/s in mid-stance (docs/commands/import-opensim.md).
   CHECK(ankle[ankle.size() / 2] > 0.05);
   CHECK(ankle[ankle.size() / 2] < 0.15);
   // Given belt speed: used as is.
@@ -143,7 +143,7 @@ TEST_CASE("import: after belt removal the stance foot is at rest", "[opensim_imp
 TEST_CASE("import: segment angles against the markers", "[opensim_import]") {
   const ImportedTrial& t = shippedTrial();
   const TrcData trc = readTrcFile(opensimTrc());
-  // Trunk: the pelvis-to-shoulder line, README: −0.3° … +3.1° forward, mean 1.2° forward.
+  // Trunk: the pelvis-to-shoulder line, docs/commands/import-opensim.md: −0.3° … +3.1° forward, mean 1.2° forward.
   CHECK(t.trunk_source == "markers");
   CHECK(t.trunk.v.mean() == Approx(-1.24 * kDeg).margin(0.1 * kDeg));
   CHECK(t.trunk.v.maxCoeff() < 0.5 * kDeg);
@@ -283,7 +283,7 @@ TEST_CASE("analysis: static one-leg stance gives the hand-computed distal joint 
   t.leg1.assign(n, BodySide::Right);
   t.step.assign(n, 0);
   t.double_support.assign(n, false);
-  Eigen::RowVectorXd q(5);  // (1.13) as documented in the README
+  Eigen::RowVectorXd q(5);  // (1.13) as documented in docs/conventions.md
   q << sh[0], th[0] - sh[0] - M_PI, th[0] - M_PI - psi, th[1] - th[0], th[1] - sh[1] - M_PI;
   t.q = q.replicate(n, 1);
   t.qd = Eigen::MatrixXd::Zero(n, 5);

@@ -1,4 +1,4 @@
-// The readers' resource limits (README, "Reliability"): file size, line length and nesting depth
+// The readers' resource limits (docs/reliability.md): file size, line length and nesting depth
 // of YAML documents, rows and line length of sweep.csv files.
 #include <catch2/catch.hpp>
 

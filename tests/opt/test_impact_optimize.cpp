@@ -1,4 +1,4 @@
-// The optimiser on a gait landing with an impact (README, "Gaits with impact"): the shipped
+// The optimiser on a gait landing with an impact (docs/science/impact-gaits.md): the shipped
 // C&A configuration loads with its landing, the parameters this family does not read stay
 // fixed, and a perturbed start returns to the shipped optimum with a unique impact.
 #include <catch2/catch.hpp>

@@ -103,7 +103,7 @@ TEST_CASE("ipopt: gait-problem Hessian agrees with central differences of the gr
   // sets) and the grid constraints (DS branch switches, kinks between nodes) are not: at this
   // optimum forward and central differences of their gradients disagree by 2.7 % of the largest
   // entry (C_Γ) and by O(1) (grid), which is why the exact Hessian does not help Ipopt here
-  // (README, "Which backend").
+  // (docs/formats/optimizer-config.md).
   p.addConstraints(gaitopt::makeSpeedConstraint(cache, 0.5));
   VectorX lambda(1);
   lambda << 1.0;
@@ -174,7 +174,7 @@ TEST_CASE("ipopt: damped BFGS keeps the secant condition and positive definitene
 // Ipopt with its default settings (SolverSettings) and SLSQP from the same start reach the same
 // optimum. Light: from the shipped optimum moved by 1 % of each parameter's scale.
 TEST_CASE("ipopt: Ipopt and SLSQP reach the same optimum on the default problem", "[ipopt]") {
-  // With dry friction Ipopt ends 0.37 % below SLSQP (README, "Joint friction and the friction
+  // With dry friction Ipopt ends 0.37 % below SLSQP (docs/commands/optimize.md, "Joint friction and the friction
   // margin of the shipped configurations"); the agreement below is the viscous problem's.
   const gaitopt::OptimizeConfig config = gaitopt::test::viscousConfig("default.yaml");
   const gaitopt::GaitEvaluator ev(config.robot, config.options, config.model_options);

@@ -443,7 +443,7 @@ TEST_CASE("optimize: 1.0 m/s on the default robot ends optimal, between the node
           "[optimize]") {
   const DefaultRun& run = defaultRun();
   // Under the conditions this figure was measured in: viscous joint friction only (the robot's
-  // Coulomb friction set to 0), the whole friction cone (README, "gaitopt sweep": 1.0 m/s with
+  // Coulomb friction set to 0), the whole friction cone (docs/commands/sweep.md: 1.0 m/s with
   // dry friction ends infeasible).
   gaitopt::RobotParams viscous = run.config.robot;
   viscous.coulomb.fill(0.0);

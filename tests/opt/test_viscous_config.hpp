@@ -3,7 +3,7 @@
 // behaviours (local optima, restarts, iteration counts) were found in: viscous joint friction
 // only (the robot's Coulomb friction set to 0, so that the verdict has none to add) and the
 // whole friction cone, from the default start. The shipped configurations plan with dry friction and
-// friction_coefficient 0.6 (README, "Joint friction and the friction margin of the shipped
+// friction_coefficient 0.6 (docs/commands/optimize.md, "Joint friction and the friction margin of the shipped
 // configurations"), which moves SLSQP's default start to other local optima.
 #include <string>
 

@@ -117,7 +117,7 @@ def check_trajectory(label, evaluation, robot_doc, options, rate):
 
     # C_Gamma (3.28): the integral of Gamma*^T Gamma* over the step per metre, by the trapezoid
     # rule on each phase (the torques jump at the SS/DS switch). With dry friction the smooth
-    # sign's layer is not resolved by the default grids: the README ("Gait files",
+    # sign's layer is not resolved by the default grids: docs/formats/gait-file.md ("dry_friction",
     # dry_friction) states C_Gamma's accuracy then, 0.63 % on the default optimum.
     power = np.sum(traj.torques ** 2, axis=1)
     integral = sum(np.trapz(power[p], traj.t[p]) for p in (ss, ds))

@@ -45,7 +45,7 @@ TEST_CASE("Perturbed closed loop converges to the reference cycle", "[sim]") {
   req.steps = 3;
   req.torque_limits = false;
   // The default gait's DS starts and ends on its 20 N minimum normal force, so the DS control
-  // of α has a thin margin: larger perturbations end in "stance_lift_off" (README).
+  // of α has a thin margin: larger perturbations end in "stance_lift_off" (docs/commands/simulate.md).
   for (const double dalphad : {0.02, -0.003}) {
     DYNAMIC_SECTION("phase-variable rate " << dalphad << " rad/s: restored in one step") {
       req.dalphad0 = dalphad;

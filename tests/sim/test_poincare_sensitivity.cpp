@@ -43,7 +43,7 @@ TEST_CASE("Walking map: sensitivity Jacobian agrees with central finite differen
           "[sim][poincare][sensitivity]") {
   const DefaultGait f;
   WalkRequest req;
-  req.torque_limits = false;  // the smooth (unsaturated) closed loop: see README "stability"
+  req.torque_limits = false;  // the smooth (unsaturated) closed loop: see docs/commands/stability.md
   req.tolerances = {1e-12, 1e-14};
   const Eigen::VectorXd x = walkingCycleState(f.evaluation.motion);
   const Eigen::VectorXd h = Eigen::VectorXd::Constant(10, 1e-4);

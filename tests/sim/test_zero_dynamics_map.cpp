@@ -9,7 +9,7 @@
 
 namespace gaitopt::test {
 
-// The analysis' closed loop: without the (non-smooth) torque projection, README "stability".
+// The analysis' closed loop: without the (non-smooth) torque projection, docs/commands/stability.md.
 WalkRequest smoothRequest() {
   WalkRequest req;
   req.torque_limits = false;

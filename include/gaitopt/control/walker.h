@@ -5,7 +5,7 @@
  * `gaitopt export --format json` writes and walks that gait's cyclic step for as long as
  * it is called.
  *
- * Conventions (README "Conventions" and "gaitopt export", "Angle conventions"):
+ * Conventions (docs/conventions.md and docs/formats/controller-export.md):
  * - world frame: x forward (the walking direction), z up, the robot in the sagittal x-z
  *   plane seen from its left; SI units; every angle in rad, counter-clockwise positive
  *   (from +x toward +z);

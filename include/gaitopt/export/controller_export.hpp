@@ -121,7 +121,7 @@ std::vector<std::pair<std::string, std::string>> exportColumns();
 
 std::string exportCsv(const ExportMetadata& meta, const std::vector<ExportRow>& rows);
 
-// JSON (schema kControllerExportSchema, README "gaitopt export"): the gait and robot files
+// JSON (schema kControllerExportSchema, docs/commands/export.md): the gait and robot files
 // embedded verbatim (io/controller_export_file.hpp reads them back), the cyclic gait, the
 // feedforward's rotor model (`model`'s), metadata, columns with units, per phase the virtual
 // constraints as polynomials of a normalised phase variable, and the samples column-wise.

@@ -3,7 +3,7 @@
 // gaits of a `gaitopt sweep` output, each with its virtual constraints as polynomials and
 // Bézier curves of the normalised phase and its feedforward tables (the `phases` of a
 // controller export), one file per robot as in Cassie's gait libraries of Bézier coefficients
-// per speed (README "gaitopt export", "Gait library").
+// per speed (docs/formats/controller-export.md, "Gait library").
 #include <string>
 #include <vector>
 

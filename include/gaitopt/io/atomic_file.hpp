@@ -1,5 +1,5 @@
 #pragma once
-// Safe writing of outputs (README, "Reliability"): nothing half-written, no planted symbolic
+// Safe writing of outputs (docs/reliability.md): nothing half-written, no planted symbolic
 // link followed, a run's files appearing together, and temporaries removed on SIGINT/SIGTERM.
 #include <functional>
 #include <stdexcept>

@@ -1,5 +1,5 @@
 #pragma once
-// Reading back the head of a JSON controller export (`gaitopt export --format json`, README
+// Reading back the head of a JSON controller export (`gaitopt export --format json`,
 // "gaitopt export"): the embedded gait and robot files, so that a consumer rebuilds the exact
 // gait from the export alone, and the cyclic gait and rotor model the feedforward was made with.
 //

@@ -5,7 +5,7 @@
 //   robot: ../robot/rabbit_miossec.yaml   # relative to the gait file's directory
 //   parameterisation: {ss_points: 3, ds_points: 1}   # optional; default the thesis' 17
 //   parameters: {alpha_iDS: ..., ..., T_DS: ...}   # all of them, radians / metres / seconds
-//   options: {...}                        # optional, every key optional (see README)
+//   options: {...}                        # optional, every key optional (docs/formats/gait-file.md)
 //
 // Reading is as strict as for robot files: every problem is a ConfigError naming the file,
 // the dotted key and its line.

@@ -1,6 +1,6 @@
 #pragma once
 // Optimiser configuration files, as read by `gaitopt optimize` (and reused by commands that run
-// many optimisations, e.g. a speed sweep). Schema (every key is described in the README,
+// many optimisations, e.g. a speed sweep). Schema (every key is described in docs/formats/optimizer-config.md,
 // section "gaitopt optimize"):
 //
 //   robot: robot/rabbit_miossec.yaml   # required; relative to this file's directory

@@ -17,7 +17,7 @@
 
 namespace gaitopt {
 
-// Resource limits of every YAML reader (README, "Reliability"): beyond them the file is refused
+// Resource limits of every YAML reader (docs/reliability.md): beyond them the file is refused
 // with a ConfigError instead of costing gigabytes or minutes.
 struct YamlLimits {
   static constexpr std::size_t kMaxFileBytes = 1 << 20;  // 1 MiB
@@ -103,7 +103,7 @@ std::string showNumber(double value);
 
 // A documented physical range [min, max] of a number, each bound open or closed, with its
 // unit; robot, gait and optimiser readers share these checks so every number is both finite
-// and physically meaningful (README, "Reliability").
+// and physically meaningful (docs/reliability.md).
 struct Range {
   double min;
   double max;

@@ -16,7 +16,7 @@ double criterionValue(const GaitEvaluation<double>& e, Criterion c);
 const GaitParameters& criterionGradient(const GaitGradient& g, Criterion c);
 
 // Box bounds that keep the parameters in the physically meaningful range (documented in the
-// README): knees within the joint limits, trunk within 1 rad of upright, 0.05 ≤ d ≤ 1 m, ...
+// docs/commands/optimize.md): knees within the joint limits, trunk within 1 rad of upright, 0.05 ≤ d ≤ 1 m, ...
 VariableSet gaitVariables(const Model& model, const GaitParameters& initial,
                           const Parameterisation& parameterisation);
 

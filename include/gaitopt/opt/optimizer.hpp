@@ -22,28 +22,28 @@ enum class HierarchyStrategy { Staged, Direct };
 enum class Backend { Ipopt, NloptSlsqp, NloptCobyla };
 
 struct SolverSettings {
-  Backend backend = Backend::NloptSlsqp;  // measured faster than Ipopt here (README)
+  Backend backend = Backend::NloptSlsqp;  // measured faster than Ipopt here (docs/formats/optimizer-config.md)
   HierarchyStrategy hierarchy = HierarchyStrategy::Staged;
   int max_iter = 500;
   double tol = 1e-8;
   std::vector<std::pair<std::string, std::string>> ipopt_options;
-  // Ipopt's Hessian of the Lagrangian: the dense BFGS measured fastest (README).
+  // Ipopt's Hessian of the Lagrangian: the dense BFGS measured fastest (docs/formats/optimizer-config.md).
   HessianMode hessian = HessianMode::DenseBfgs;
   int print_every = 1;
   // Exchange method for the grid constraints (only near-active entries in each NLP, re-checked
   // on the full grid after each solve); false: every grid entry in one NLP.
-  bool constraint_exchange = false;  // measured: SLSQP stalls with it, Ipopt gains (README)
+  bool constraint_exchange = false;  // measured: SLSQP stalls with it, Ipopt gains (docs/formats/optimizer-config.md)
   GradientMode gradients = GradientMode::Exact;
   // Phase-wise rows as the interpolant's maxima between the nodes (opt/gait_problem.hpp), so
   // the semi-infinite constraints hold on the whole phase; false: at the nodes only.
   bool between_nodes = true;
   // With between_nodes, also the DS rows (gait/ds_interval_maxima.hpp). Off at first: the
   // optimiser switches it on, warm from its point, once a solve ends with a DS constraint
-  // unmet between the nodes (from the start, SLSQP measured worse local optima: README).
+  // unmet between the nodes (from the start, SLSQP measured worse local optima: docs/commands/optimize.md).
   bool ds_between_nodes = false;
   int max_restarts = 3;  // of the full stage, from the last point, when it ends unmet
   // When the full stage still ends with an unmet constraint: the nearest point meeting every
-  // level and the speed, then the full stage again from there (README "Global search"). Off
+  // level and the speed, then the full stage again from there (docs/commands/optimize.md). Off
   // by default: it adds an Ipopt projection to every infeasible run (sweeps, infeasible
   // speeds); on in globalSearch (--global, bench_optimize --random-starts), where unmet starts are
   // the common failure.

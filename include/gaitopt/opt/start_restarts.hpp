@@ -1,6 +1,6 @@
 #pragma once
 // Restarts and retries of one start of a multi-start search (global_search.hpp), measured on the random
-// starts of the three shipped configurations (README "Restarts of each start"):
+// starts of the three shipped configurations (docs/commands/optimize.md):
 // - restarts from an optimum: SLSQP's stopping test (relative change of x and f below `tol`)
 //   fires on a short step of a quasi-Newton model built across the kinks of the grid
 //   constraints, far from a KKT point (measured: active-set KKT residual up to 0.6, criteria

@@ -5,7 +5,7 @@
 // Model: the algebraic impact (2.1)/(2.13) with Coulomb friction by default — the model the
 // impact-landing gaits are optimised with (gait/impact_landing.hpp), so the simulated cycle is
 // the optimised one; the differential (Keller) model is available (--impact differential) and
-// agrees with it on the shipped gaits (one phase, README "Gaits with impact").
+// agrees with it on the shipped gaits (one phase, docs/science/impact-gaits.md).
 // Outcomes: status inconsistent or indeterminate → ImpactUnavailable (the model cannot say
 // what happens); a foot sliding after the impact → Slipped; foot 1 (rear) lifting when the
 // gait needs a double support → RearFootLift. When foot 1 sticks on a gait without double
