@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cli_common.hpp"
+#include "data_files.hpp"
 #include "commands.hpp"
 #include "gaitopt/export/robot_export.hpp"
 #include "gaitopt/io/atomic_file.hpp"
@@ -13,7 +14,7 @@ namespace gaitopt::cli {
 namespace {
 
 struct ExportModelArgs {
-  std::string robot = "configs/robot/rabbit_miossec.yaml";
+  std::string robot;  // empty: the default robot (data_files.hpp)
   std::string format, out;
   ModelExportOptions options;
 };
@@ -26,9 +27,7 @@ void registerExportModelCommand(CLI::App& app, int& exit_code) {
       "export-model",
       "Write the robot as MuJoCo MJCF or URDF (planar floating base, support bar as a point "
       "mass at the hip, point feet as small spheres, rotor inertia as MJCF armature).");
-  cmd->add_option("--robot", args->robot, "Robot description YAML file")
-      ->capture_default_str()
-      ->check(CLI::ExistingFile);
+  addRobotOption(cmd, args->robot);
   cmd->add_option("--format", args->format, "mjcf or urdf")
       ->required()
       ->check(CLI::IsMember({"mjcf", "urdf"}));
@@ -44,7 +43,7 @@ void registerExportModelCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str()
       ->check(CLI::Range(1e-6, 0.01));
   cmd->callback([args, &exit_code]() {
-    const RobotParams robot = loadRobot(args->robot);
+    const RobotParams robot = loadRobot(robotOrDefault(args->robot, "export-model"));
     requireFileOutput(args->out);
     writeFileAtomically(args->out, args->format == "mjcf" ? robotMjcf(robot, args->options)
                                                           : robotUrdf(robot, args->options));

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "cli_common.hpp"
+#include "data_files.hpp"
 #include "commands.hpp"
 #include "gaitopt/impact/solve_impact.hpp"
 #include "gaitopt/io/impact_report.hpp"
@@ -14,7 +15,7 @@ namespace gaitopt::cli {
 namespace {
 
 struct ImpactArgs {
-  std::string robot = "configs/robot/rabbit_miossec.yaml";
+  std::string robot;  // empty: the default robot (data_files.hpp)
   std::string q, qd;
   std::string model = "algebraic";
   double mu = 0.0;
@@ -23,7 +24,7 @@ struct ImpactArgs {
 Vec5 toVec5(const std::vector<double>& v) { return Vec5(Eigen::Map<const Vec5>(v.data())); }
 
 int runImpact(const ImpactArgs& args) {
-  const Model model = buildModel(loadRobot(args.robot));
+  const Model model = buildModel(loadRobot(robotOrDefault(args.robot, "impact")));
   const Vec5 q_given = toVec5(parseNumberList("--q", args.q, 5));
   const Vec5 qd = toVec5(parseNumberList("--qd", args.qd, 5));
   requireFriction("--mu", args.mu);
@@ -54,9 +55,7 @@ void registerImpactCommand(CLI::App& app, int& exit_code) {
       "Rigid impact of foot 2 (zero restitution, Coulomb friction) at a double-support "
       "configuration: every consistent solution as JSON. Exit 0: at least one solution; "
       "3: inconsistent (none); 2: bad input.");
-  cmd->add_option("--robot", args->robot, "Robot description YAML file")
-      ->capture_default_str()
-      ->check(CLI::ExistingFile);
+  addRobotOption(cmd, args->robot);
   cmd->add_option("--q", args->q,
                   "Pinned configuration alpha,delta1,delta2,delta3,delta4 [rad], foot 1 at the "
                   "origin, foot 2 on the ground")

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "cli_common.hpp"
+#include "data_files.hpp"
 #include "commands.hpp"
 #include "gaitopt/impact/impact_map.hpp"
 #include "gaitopt/io/atomic_file.hpp"
@@ -18,7 +19,7 @@ namespace gaitopt::cli {
 namespace {
 
 struct ImpactMapArgs {
-  std::string robot = "configs/robot/rabbit_miossec.yaml";
+  std::string robot;  // empty: the default robot (data_files.hpp)
   std::string q;
   std::string mu_range = "0:1.5:31", theta_range = "-180:0:181";
   std::string model = "algebraic";
@@ -63,7 +64,7 @@ std::string intervalsCsv(const Model& model, const Vec5& q, const ImpactMapReque
 }
 
 int runImpactMap(const ImpactMapArgs& args) {
-  const Model model = buildModel(loadRobot(args.robot));
+  const Model model = buildModel(loadRobot(robotOrDefault(args.robot, "impact-map")));
   const std::vector<double> qv = parseNumberList("--q", args.q, 5);
   const SampleRange mu = parseSampleRange("--mu-range", args.mu_range);
   const SampleRange theta = parseSampleRange("--theta-range", args.theta_range);
@@ -95,9 +96,7 @@ void registerImpactMapCommand(CLI::App& app, int& exit_code) {
       "Impact behaviour over the arriving-velocity direction theta (V2- = (cos, sin)) and the "
       "friction coefficient: writes DIR/map.csv (and DIR/intervals.csv with the exact "
       "theta-intervals for the algebraic model).");
-  cmd->add_option("--robot", args->robot, "Robot description YAML file")
-      ->capture_default_str()
-      ->check(CLI::ExistingFile);
+  addRobotOption(cmd, args->robot);
   cmd->add_option("--q", args->q, "Double-support configuration, 5 values [rad]")->required();
   cmd->add_option("--mu-range", args->mu_range, "Friction samples a:b:n")->capture_default_str();
   cmd->add_option("--theta-range", args->theta_range, "Direction samples a:b:n [deg]")

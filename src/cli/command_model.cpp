@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "cli_common.hpp"
+#include "data_files.hpp"
 #include "commands.hpp"
 #include "gaitopt/io/model_report.hpp"
 #include "gaitopt/io/robot_file.hpp"
@@ -16,7 +17,7 @@ constexpr double kMaxRate = 1e3;             // rad/s
 constexpr double kMaxAcceleration = 1e5;     // rad/s^2
 
 struct ModelArgs {
-  std::string robot = "configs/robot/rabbit_miossec.yaml";
+  std::string robot;  // empty: the default robot (data_files.hpp)
   std::vector<double> q, qd, qdd;
   std::string rotor = "exact";
 };
@@ -31,9 +32,7 @@ void registerModelCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<ModelArgs>();
   CLI::App* cmd = app.add_subcommand(
       "model", "Print the pinned (5-DOF) and floating (7-DOF) model terms at one state as JSON.");
-  cmd->add_option("--robot", args->robot, "Robot description YAML file")
-      ->capture_default_str()
-      ->check(CLI::ExistingFile);
+  addRobotOption(cmd, args->robot);
   cmd->add_option("--q", args->q, "Configuration alpha,delta1,delta2,delta3,delta4 [rad]")
       ->required()
       ->delimiter(',')
@@ -55,7 +54,7 @@ void registerModelCommand(CLI::App& app, int& exit_code) {
   cmd->callback([args, &exit_code]() {
     ModelOptions options;
     options.rotor = args->rotor == "exact" ? RotorModel::Exact : RotorModel::HighGear;
-    const Model model = buildModel(loadRobot(args->robot), options);
+    const Model model = buildModel(loadRobot(robotOrDefault(args->robot, "model")), options);
     std::optional<Vec5> qdd;
     if (!args->qdd.empty()) qdd = toVec5(args->qdd);
     std::cout << modelReportJson(model, toVec5(args->q), toVec5(args->qd), qdd);

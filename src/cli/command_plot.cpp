@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "data_files.hpp"
 
 namespace gaitopt::cli {
 namespace {
@@ -25,11 +26,10 @@ struct PlotArgs {
   std::string kind, run_dir, out;
 };
 
-// GAITOPT_PLOT_SCRIPTS overrides the directory compiled in (the source tree's scripts/plot),
-// e.g. for a copied binary.
+// GAITOPT_PLOT_SCRIPTS overrides gaitopt's own scripts/plot (installed or in the source tree).
 fs::path scriptsDir() {
   const char* env = std::getenv("GAITOPT_PLOT_SCRIPTS");
-  return env && *env ? fs::path(env) : fs::path(GAITOPT_SOURCE_DIR) / "scripts" / "plot";
+  return env && *env ? fs::path(env) : dataDirectory() / "scripts" / "plot";
 }
 
 // Figure kinds: the scripts KIND.py of the directory (files starting with '_' are helpers).
@@ -81,7 +81,7 @@ void registerPlotCommand(CLI::App& app, int& exit_code) {
       "matplotlib): stick, torques, reactions, phase (a step run: summary.json + "
       "trajectory.csv) or sweep (sweep.csv); animate draws an export CSV (gaitopt export) as "
       "an animated GIF. Writes RUN_DIR/KIND.png unless --out is given. "
-      "Scripts directory: $GAITOPT_PLOT_SCRIPTS, else the source tree's scripts/plot.");
+      "Scripts directory: $GAITOPT_PLOT_SCRIPTS, else gaitopt's scripts/plot (installed or the source tree).");
   cmd->add_option("kind", args->kind, "Figure: the name of a script in the scripts directory")
       ->required();
   cmd->add_option("run_dir", args->run_dir, "Directory written by gaitopt evaluate, optimize or sweep (animate: an export CSV)")

@@ -1,0 +1,26 @@
+#pragma once
+// Where gaitopt finds its own data (the shipped robots, configurations and figure scripts): the
+// installed share/gaitopt next to the executable's bin/ (relocatable: found from the
+// executable's path), else the source tree the executable was built from. A default file is
+// resolved there, not in the current folder, and the path used is printed.
+#include <filesystem>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace gaitopt::cli {
+
+constexpr const char* kDefaultRobot = "configs/robot/rabbit_miossec.yaml";
+
+std::filesystem::path dataDirectory();
+
+// `--robot FILE`: empty `target` when not given (robotOrDefault then names the default).
+void addRobotOption(CLI::App* cmd, std::string& target);
+
+// The robot file given, or the default robot of the data directory, printed on standard error
+// as "gaitopt COMMAND: --robot not given: using PATH".
+std::string robotOrDefault(const std::string& given, const char* command);
+
+}  // namespace gaitopt::cli
