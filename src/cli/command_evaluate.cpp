@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cli_common.hpp"
+#include "override_options.hpp"
 #include "commands.hpp"
 #include "gaitopt/io/atomic_file.hpp"
 #include "gaitopt/gait/evaluator.hpp"
@@ -22,8 +23,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct EvaluateArgs {
-  std::string gait;
-  std::string out;
+  std::string gait, out;
+  OverrideArgs overrides;
   std::optional<double> sample_rate;
 };
 
@@ -39,19 +40,22 @@ void registerEvaluateCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--gait", args->gait, "Gait YAML file (robot, parameters, options)")
       ->required();
   cmd->add_option("--out", args->out, "Output directory (created if missing)")->required();
+  addOverrideOptions(cmd, args->overrides, "options.target_speed");
   cmd->add_option("--sample-rate", args->sample_rate,
                   "trajectory.csv sample rate [Hz], overrides options.sample_rate (0 < HZ <= 1e5)")
       ->check(numberWithin(0.0, 1e5, true, "Hz"));
   cmd->callback([args, &exit_code]() {
     // Everything that can fail on bad input happens before the output directory is touched.
-    GaitFile gait = loadGaitFile(args->gait);
+    GaitFile gait = loadGaitFileWithOverrides(args->gait, overridesOf(args->overrides, "options.target_speed"));
     if (args->sample_rate) gait.options.sample_rate = *args->sample_rate;
     StagedDirectory staged(args->out, ourOutputs());  // checks --out before any work
 
     const GaitEvaluator evaluator(gait.robot, gait.options, gait.model_options);
     const GaitEvaluation<double> e = evaluator.evaluate(gait.parameters);
     const bool defined = e.defined();
-    const std::string summary = gaitSummaryJson(evaluator, gait.parameters, e);
+    const std::string summary = gaitSummaryJson(evaluator, gait.parameters, e, [&](JsonWriter& w) {
+      writeOverridesJson(w, gait.overrides);
+    });
     std::optional<std::string> csv;
     if (defined && e.motion_computed) {
       csv = trajectoryCsv(sampleTrajectory(evaluator, e, gait.options.sample_rate));

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cli_common.hpp"
+#include "override_options.hpp"
 #include "commands.hpp"
 #include "gaitopt/export/controller_export.hpp"
 #include "gaitopt/export/gait_library.hpp"
@@ -45,6 +46,7 @@ std::optional<std::vector<ExportRow>> rampedExport(const GaitEvaluator& evaluato
 }
 
 struct ExportArgs {
+  OverrideArgs overrides;
   std::string gait, library, out, format = "csv", first_stance = "left", ramp_out = "stop",
       rotor = "exact";
   int steps = 10, ramp_steps = 2;
@@ -91,6 +93,7 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::ExistingDirectory);
   source->require_option(1);
   cmd->add_option("--out", args->out, "Output file")->required();
+  addOverrideOptions(cmd, args->overrides, nullptr);  // of --gait
   cmd->add_option("--steps", args->steps, "Number of steps (>= 1)")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
@@ -121,7 +124,7 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"stop", "none"}));
   cmd->callback([args, &exit_code]() {
     if (!args->library.empty()) return exportLibrary(*args, exit_code);
-    const GaitFile gait = loadGaitFile(args->gait);
+    const GaitFile gait = loadGaitFileWithOverrides(args->gait, overridesOf(args->overrides, nullptr));
     // The JSON export writes each virtual constraint as one polynomial; a B-spline is piecewise.
     if (args->format == "json" && gait.options.parameterisation.basis == PathBasis::BSpline) {
       std::cerr << "gaitopt: error: " << args->gait << ": parameterisation.basis: the JSON "

@@ -19,6 +19,7 @@
 #include "gaitopt/opt/global_search.hpp"
 #include "gaitopt/opt/optimizer.hpp"
 #include "gaitopt/opt/start_runs.hpp"
+#include "override_options.hpp"
 
 namespace gaitopt::cli {
 namespace {
@@ -27,8 +28,8 @@ namespace {
 constexpr std::uint64_t kMaxSeed = (std::uint64_t{1} << 53) - 1;
 
 struct OptimizeArgs {
-  std::string config;
-  std::string out;
+  std::string config, out;
+  OverrideArgs overrides;
   int random_starts = 0;  // 0: one run from the configured initial guess
   int global = 0;         // > 0: globalSearch with that many starts
   std::uint64_t seed = 1;
@@ -82,6 +83,7 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
       "limit or solver failure (outputs still written); 2: bad input (nothing written).");
   cmd->add_option("--config", args->config, "Optimiser configuration YAML file")->required();
   cmd->add_option("--out", args->out, "Output directory (created if missing)")->required();
+  addOverrideOptions(cmd, args->overrides, "speed");
   CLI::Option* starts =
       cmd->add_option("--random-starts", args->random_starts,
                       "Optimise from K random starts in the documented box around the "
@@ -110,7 +112,7 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
     if (seed->count() > 0 && starts->count() == 0 && global->count() == 0)
       throw CLI::RequiresError("--seed", "--random-starts or --global");
     // Everything that can fail on bad input happens before the output directory is touched.
-    OptimizeConfig config = loadOptimizeConfig(args->config);
+    OptimizeConfig config = loadOptimizeConfigWithOverrides(args->config, overridesOf(args->overrides, "speed"));
     StagedDirectory staged(args->out, ourOutputs(&config.solver));  // --out checked before work
     placeIpoptOutputFile(config.solver, staged.path());
 
@@ -161,9 +163,8 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
     // summary.json (with criterion and solver), gait.yaml, trajectory.csv: io/optimize_output.hpp.
     const OptimizationOutputs outputs =
         optimizationOutputs(evaluator, config, r, args->out, [&](JsonWriter& w) {
-          if (args->random_starts > 0) {
+          if (args->random_starts > 0)
             writeRandomStartsJson(w, runs, args->seed, runs[best].start, criterion);
-          }
           if (args->global > 0) writeGlobalSearchJson(w, global_result, runs, args->seed, criterion);
         });
     writeOptimizationOutputs(staged.path(), outputs);
@@ -182,9 +183,8 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
       return;
     }
     std::ostringstream names;
-    for (std::size_t i = 0; i < r.unmet_constraints.size(); ++i) {
+    for (std::size_t i = 0; i < r.unmet_constraints.size(); ++i)
       names << (i == 0 ? "" : ", ") << r.unmet_constraints[i];
-    }
     std::cerr << "gaitopt: optimize: status " << r.status << "; unmet level "
               << (r.unmet_level < 0 ? std::string("none") : std::to_string(r.unmet_level))
               << (r.unmet_constraints.empty() ? std::string() : ": " + names.str())

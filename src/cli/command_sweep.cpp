@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli_common.hpp"
+#include "override_options.hpp"
 #include "commands.hpp"
 #include "gaitopt/gait/evaluator.hpp"
 #include "gaitopt/io/atomic_file.hpp"
@@ -24,9 +25,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct SweepArgs {
-  std::string config;
-  std::string speeds;
-  std::string out;
+  std::string config, speeds, out;
+  OverrideArgs overrides;
   int jobs = 1;
   std::optional<std::string> shard;
   bool quiet = false;
@@ -48,6 +48,7 @@ void registerSweep(CLI::App& app, int& exit_code) {
   cmd->add_option("--config", args->config,
                   "Optimiser configuration YAML file (as for `gaitopt optimize`)")
       ->required();
+  addOverrideOptions(cmd, args->overrides, nullptr);
   cmd->add_option("--speeds", args->speeds,
                   "Speeds start:stop:step [m/s], stop included, e.g. 0.2:1.0:0.05")
       ->required();
@@ -62,7 +63,7 @@ void registerSweep(CLI::App& app, int& exit_code) {
   cmd->add_flag("--quiet", args->quiet, "No per-speed progress lines");
   cmd->callback([args, &exit_code]() {
     // Everything that can fail on bad input happens before the output directory is touched.
-    OptimizeConfig config = loadOptimizeConfig(args->config);
+    OptimizeConfig config = loadOptimizeConfigWithOverrides(args->config, overridesOf(args->overrides, nullptr));
     std::vector<double> speeds;
     try {
       speeds = sortedSpeeds(parseSpeedRange(args->speeds));

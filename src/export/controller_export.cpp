@@ -476,6 +476,9 @@ ExportMetadata exportMetadata(const GaitFile& gait, const GaitEvaluation<double>
   m["friction"] = "robot file Coulomb (smooth sign tanh(w/" +
                   formatDouble(gait.model_options.friction_smoothing) + ")) and viscous";
   m["rotor_model"] = rotorName(req.rotor);
+  std::string overrides;
+  for (const std::string& o : gait.overrides) overrides += (overrides.empty() ? "" : " ") + o;
+  if (!overrides.empty()) m["overrides"] = overrides;
   if (req.ramp_steps > 0) {
     m["ramp_steps"] = std::to_string(req.ramp_steps);
     std::string rates;
@@ -517,15 +520,32 @@ std::string exportCsv(const ExportMetadata& meta, const std::vector<ExportRow>& 
   return out.str();
 }
 
-// A file embedded verbatim with its path and digest.
-void writeEmbeddedFile(JsonWriter& w, const std::string& key, const std::string& path) {
-  const std::string text = fileBytes(path);
+void writeEmbeddedText(JsonWriter& w, const std::string& key, const std::string& file,
+                       const std::string& text) {
   w.key(key).beginObject();
-  w.key("file").value(path);
+  w.key("file").value(file);
   w.key("sha256").value(sha256Hex(text));
   w.key("yaml").value(text);
   w.endObject();
 }
+
+void writeEmbeddedFile(JsonWriter& w, const std::string& key, const std::string& path) {
+  writeEmbeddedText(w, key, path, fileBytes(path));
+}
+
+namespace {
+
+// The gait as read: the file itself, or with command-line overrides the gait file they make
+// (so that a reader of the export rebuilds the gait that was exported).
+void writeEmbeddedGait(JsonWriter& w, const GaitFile& gait) {
+  if (gait.overrides.empty())
+    writeEmbeddedFile(w, "gait", gait.path);
+  else
+    writeEmbeddedText(w, "gait", gait.path + " with the overrides of metadata.overrides",
+                      gaitYaml(gait.robot_path, gait.parameters, gait.options, gait.model_options));
+}
+
+}  // namespace
 
 // How the feedforward is made and recomputed at other phase rates (docs/commands/export.md).
 void writeFeedforwardHead(JsonWriter& w, const Model& model) {
@@ -604,7 +624,7 @@ std::string exportJson(const GaitFile& gait, const Model& model, const GaitEvalu
   // The head (everything before `phases`) is what readControllerExport parses.
   w.key("format").value("gaitopt controller export");
   w.key("schema_version").value(kControllerExportSchema);
-  writeEmbeddedFile(w, "gait", gait.path);
+  writeEmbeddedGait(w, gait);
   writeEmbeddedFile(w, "robot", gait.robot_path);
   writeCyclicGait(w, e);
   writeFeedforwardHead(w, model);

@@ -52,6 +52,7 @@ ConfigError::ConfigError(std::string file, std::string key, int line, const std:
     : std::runtime_error(formatMessage(file, key, line, problem)),
       file_(std::move(file)),
       key_(std::move(key)),
-      line_(line) {}
+      line_(line),
+      problem_(problem) {}
 
 }  // namespace gaitopt

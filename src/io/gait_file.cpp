@@ -216,11 +216,18 @@ GaitFile parseGaitDocument(const YamlMap& doc) {
   return g;
 }
 
-GaitFile loadGaitFile(const std::string& path) {
-  const YamlMap doc(loadYamlFile(path), path, "");
-  GaitFile g = parseGaitDocument(doc);
-  requireReadableFile(doc, "robot", "robot file", g.robot_path, doc.string("robot"), "gait file");
+GaitFile loadGaitFile(const std::string& path) { return loadGaitFileWithOverrides(path, {}); }
+
+GaitFile loadGaitFileWithOverrides(const std::string& path, const std::vector<Override>& overrides) {
+  GaitFile g;
+  attributeOverrideErrors(path, overrides, [&] {
+    const YamlMap doc(withOverrides(loadYamlFile(path), overrides), path, "");
+    g = parseGaitDocument(doc);
+    requireReadableFile(doc, "robot", "robot file", g.robot_path, doc.string("robot"),
+                        "gait file");
+  });
   g.robot = loadRobot(g.robot_path);  // errors inside the robot file name that file
+  for (const Override& o : overrides) g.overrides.push_back(o.text());
   return g;
 }
 

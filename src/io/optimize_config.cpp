@@ -119,10 +119,11 @@ SolverSettings parseSolver(const YamlMap& m) {
 
 }  // namespace
 
-OptimizeConfig loadOptimizeConfig(const std::string& path) {
+namespace {
+
+OptimizeConfig parseOptimizeConfig(const std::string& path, const YamlMap& doc) {
   OptimizeConfig c;
   c.path = path;
-  const YamlMap doc(loadYamlFile(path), path, "");
 
   const std::string robot = doc.string("robot");
   if (robot.empty()) throw doc.error("robot", "must name the robot description file");
@@ -189,6 +190,22 @@ OptimizeConfig loadOptimizeConfig(const std::string& path) {
                                            ") is richer than the configured one (" +
                                            c.parameterisation + ")");
   }
+  return c;
+}
+
+}  // namespace
+
+OptimizeConfig loadOptimizeConfig(const std::string& path) {
+  return loadOptimizeConfigWithOverrides(path, {});
+}
+
+OptimizeConfig loadOptimizeConfigWithOverrides(const std::string& path,
+                                               const std::vector<Override>& overrides) {
+  OptimizeConfig c;
+  attributeOverrideErrors(path, overrides, [&] {
+    c = parseOptimizeConfig(path, YamlMap(withOverrides(loadYamlFile(path), overrides), path, ""));
+  });
+  for (const Override& o : overrides) c.overrides.push_back(o.text());
   return c;
 }
 

@@ -61,6 +61,7 @@ OptimizationOutputs optimizationOutputs(const GaitEvaluator& evaluator,
   out.summary_json = gaitSummaryJson(evaluator, r.parameters, e, [&](JsonWriter& w) {
     w.key("criterion").value(criterionName(config.criterion));
     writeSolverJson(w, config.solver, r);
+    writeOverridesJson(w, config.overrides);
     if (extra) extra(w);
   });
   out.gait_yaml = gaitYaml(robotPathFrom(dir, config.robot_path), r.parameters, config.options,

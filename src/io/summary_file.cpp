@@ -253,4 +253,11 @@ std::string gaitSummaryJson(const GaitEvaluator& ev, const GaitParameters& p,
   return w.str() + "\n";
 }
 
+void writeOverridesJson(JsonWriter& w, const std::vector<std::string>& overrides) {
+  if (overrides.empty()) return;
+  w.key("overrides").beginArray();
+  for (const std::string& o : overrides) w.value(o);
+  w.endArray();
+}
+
 }  // namespace gaitopt

@@ -228,7 +228,10 @@ std::string YamlMap::path(const std::string& key) const {
 
 int YamlMap::line() const { return state_->line; }
 
-bool YamlMap::has(const std::string& key) const { return lookup(state_->node, key).has_value(); }
+bool YamlMap::has(const std::string& key) const {
+  state_->known.insert(key);  // a key the reader asks about is one of the file's valid keys
+  return lookup(state_->node, key).has_value();
+}
 
 bool YamlMap::hasMapping(const std::string& key) const {
   const auto entry = lookup(state_->node, key);

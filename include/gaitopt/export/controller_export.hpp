@@ -106,6 +106,9 @@ ExportMetadata exportMetadata(const GaitFile& gait, const GaitEvaluation<double>
 // Parts of the JSON export, shared with the gait library (export/gait_library.hpp).
 // A file embedded verbatim under `key`: its path, SHA-256 and text (`yaml`).
 void writeEmbeddedFile(JsonWriter& w, const std::string& key, const std::string& path);
+// The same for a document made in memory, `file` saying what it stands for.
+void writeEmbeddedText(JsonWriter& w, const std::string& key, const std::string& file,
+                       const std::string& text);
 // `cyclic_gait`: speed, step length, T_SS, T_DS of one evaluated gait.
 void writeCyclicGait(JsonWriter& w, const GaitEvaluation<double>& evaluation);
 // `feedforward`: the rotor model of `model`, the decomposition, the friction coefficients.

@@ -24,11 +24,13 @@ class ConfigError : public std::runtime_error {
   const std::string& file() const { return file_; }
   const std::string& key() const { return key_; }  // dotted path, e.g. "masses.m3"
   int line() const { return line_; }               // 1-based, 0 if unknown
+  const std::string& problem() const { return problem_; }
 
  private:
   std::string file_;
   std::string key_;
   int line_;
+  std::string problem_;
 };
 
 }  // namespace gaitopt

@@ -10,11 +10,13 @@
 // Reading is as strict as for robot files: every problem is a ConfigError naming the file,
 // the dotted key and its line.
 #include <string>
+#include <vector>
 
 #include "gaitopt/gait/options.hpp"
 #include "gaitopt/gait/parameters.hpp"
 #include "gaitopt/model/model.hpp"
 #include "gaitopt/model/robot_params.hpp"
+#include "gaitopt/io/overrides.hpp"
 #include "gaitopt/io/yaml_reader.hpp"
 
 namespace gaitopt {
@@ -26,6 +28,7 @@ struct GaitFile {
   GaitParameters parameters;
   GaitOptions options;
   ModelOptions model_options;
+  std::vector<std::string> overrides;  // the command line's KEY=VALUE (io/overrides.hpp)
 };
 
 // Throws ConfigError for an unreadable or malformed gait file, a missing, unknown or
@@ -33,6 +36,8 @@ struct GaitFile {
 // file (reported at the gait file's `robot` key). Errors inside the robot file itself are
 // reported by loadRobot, naming the robot file.
 GaitFile loadGaitFile(const std::string& path);
+// The same with the command line's overrides applied to the document first.
+GaitFile loadGaitFileWithOverrides(const std::string& path, const std::vector<Override>& overrides);
 
 // Everything of a parsed gait document but the robot, with the checks of loadGaitFile: `path`
 // is doc.file(), `robot_path` the `robot` key resolved against its directory (not checked for

@@ -22,6 +22,7 @@
 // file, the dotted key and its line.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "gaitopt/opt/optimizer.hpp"
 #include "gaitopt/gait/options.hpp"
@@ -29,6 +30,7 @@
 #include "gaitopt/opt/gait_problem.hpp"
 #include "gaitopt/model/model.hpp"
 #include "gaitopt/model/robot_params.hpp"
+#include "gaitopt/io/overrides.hpp"
 
 namespace gaitopt {
 
@@ -49,6 +51,7 @@ struct OptimizeConfig {
   GaitParameters initial_guess_parameters;  // filled for a gait file
   Parameterisation initial_guess_parameterisation;  // that file's
   SolverSettings solver;  // defaults of SolverSettings for every absent key
+  std::vector<std::string> overrides;  // the command line's KEY=VALUE, recorded in summary.json
 };
 
 // Throws ConfigError for an unreadable or malformed file, a missing `robot`, an unknown or
@@ -62,6 +65,9 @@ struct OptimizeConfig {
 // files name the files themselves). Only the parameters of an initial-guess gait file are
 // used (refined if coarser; a richer one is an error); its robot and options are ignored.
 OptimizeConfig loadOptimizeConfig(const std::string& path);
+// The same with the command line's overrides applied to the document first.
+OptimizeConfig loadOptimizeConfigWithOverrides(const std::string& path,
+                                               const std::vector<Override>& overrides);
 
 // Points the Ipopt option output_file (a plain file name, checked at load) into `dir`, the
 // directory the run writes, so that a configuration cannot write anywhere else.

@@ -6,6 +6,7 @@
 // Every quantity that was not computed is null, never NaN.
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "gaitopt/gait/evaluation.hpp"
 #include "gaitopt/gait/evaluator.hpp"
@@ -25,5 +26,8 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& evaluator,
 std::string gaitSummaryJson(const GaitEvaluator& evaluator, const GaitParameters& parameters,
                             const GaitEvaluation<double>& evaluation,
                             const std::function<void(JsonWriter&)>& extra = {});
+
+// The `overrides` member (the command line's KEY=VALUE in order), when there are any.
+void writeOverridesJson(JsonWriter& w, const std::vector<std::string>& overrides);
 
 }  // namespace gaitopt

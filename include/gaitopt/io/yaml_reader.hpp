@@ -48,7 +48,8 @@ class YamlMap {
   std::string path(const std::string& key) const;  // dotted path of `key` in this mapping
   int line() const;                                // line of this mapping (see above)
 
-  // Presence only; does not count as reading the key.
+  // Presence; names `key` among the valid keys of rejectUnknownKeys' message (a caller that
+  // finds it present reads it or refuses it).
   bool has(const std::string& key) const;
   // Presence of `key` holding a mapping; does not count as reading the key.
   bool hasMapping(const std::string& key) const;
