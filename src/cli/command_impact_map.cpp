@@ -9,7 +9,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "gaitopt/impact/impact_map.hpp"
-#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/robot_file.hpp"
 #include "impact_input.hpp"
@@ -70,7 +70,8 @@ int runImpactMap(const ImpactMapArgs& args) {
   const SampleRange theta = parseSampleRange("--theta-range", args.theta_range);
   requireFriction("--mu-range", std::min(mu.a, mu.b));
   requireFoot2OnGround(model, q);
-  requireDirectoryOrAbsent(args.out);
+  OutputTransaction output({{"--robot", args.robot}});
+  const std::string dir = output.directory("--out", args.out, {"map.csv", "intervals.csv"});
   ImpactMapRequest req;
   req.model = parseImpactModel(args.model);
   req.mu_min = mu.a;
@@ -80,10 +81,10 @@ int runImpactMap(const ImpactMapArgs& args) {
   req.theta_max = theta.b * kDeg;
   req.theta_count = theta.n;
   const std::string map = mapCsv(impactMap(model, q, req));
-  std::filesystem::create_directories(args.out);
-  writeFileAtomically(args.out + "/map.csv", map);
+  writeNewFile(dir + "/map.csv", map);
   if (req.model == ImpactModelKind::Algebraic)
-    writeFileAtomically(args.out + "/intervals.csv", intervalsCsv(model, q, req));
+    writeNewFile(dir + "/intervals.csv", intervalsCsv(model, q, req));
+  output.commit();
   return 0;
 }
 

@@ -13,7 +13,7 @@
 #include "commands.hpp"
 #include "gaitopt/gait/constraint_summary.hpp"
 #include "gaitopt/gait/evaluator.hpp"
-#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/optimize_config.hpp"
 #include "gaitopt/io/optimize_output.hpp"
 #include "gaitopt/opt/global_search.hpp"
@@ -86,19 +86,19 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
       cmd->add_option("--random-starts", args->random_starts,
                       "Optimise from K random starts in the box of the README around the "
                       "configured initial guess, and keep the best")
-          ->check(CLI::Range(1, 100000));
+          ->check(integerWithin(1, 100000));
   CLI::Option* global =
       cmd->add_option("--global", args->global,
                       "Multi-start global search: K random starts (the same box), starts inside "
                       "the basin of an optimum already found skipped, the local optima "
                       "clustered (0.1 %), the best one polished")
-          ->check(CLI::Range(1, 100000))
+          ->check(integerWithin(1, 100000))
           ->excludes(starts);
   CLI::Option* seed =
       cmd->add_option("--seed", args->seed,
                       "Seed of the random starts of --random-starts or --global "
                       "(std::mt19937_64), 0 to 2^53-1; default 1")
-          ->check(CLI::Range(std::uint64_t{0}, kMaxSeed));
+          ->check(integerWithin(0, kMaxSeed));
   cmd->add_flag("--quiet", args->quiet, "No progress lines");
   cmd->add_flag("--verbose", args->verbose,
                 "Also the solver's own lines (scaled objective and violation)");
@@ -111,8 +111,9 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
       throw CLI::RequiresError("--seed", "--random-starts or --global");
     // Everything that can fail on bad input happens before the output directory is touched.
     OptimizeConfig config = loadOptimizeConfig(args->config);
-    StagedDirectory staged(args->out, ourOutputs(&config.solver));  // --out checked before work
-    placeIpoptOutputFile(config.solver, staged.path());
+    OutputTransaction output({{"--config", args->config}});
+    const std::string dir = output.directory("--out", args->out, ourOutputs(&config.solver));
+    placeIpoptOutputFile(config.solver, dir);
 
     const GaitEvaluator evaluator(config.robot, config.options, config.model_options);
     const GaitParameters initial = configuredInitialGuess(config, evaluator.model());
@@ -166,8 +167,8 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
           }
           if (args->global > 0) writeGlobalSearchJson(w, global_result, runs, args->seed, criterion);
         });
-    writeOptimizationOutputs(staged.path(), outputs);
-    staged.commit();
+    writeOptimizationOutputs(dir, outputs);
+    output.commit();
 
     if (args->random_starts > 0) printStartsTable(std::cout, runs, criterion);
     if (args->global > 0) printClusters(std::cout, global_result, criterion);

@@ -52,13 +52,8 @@ class RowReader {
       : ctx_(ctx), columns_(columns), cells_(cells), line_(line) {}
   const std::string& text(const std::string& c) const { return cells_[columns_.at(c)]; }
   double number(const std::string& c) const {
-    const std::string& s = text(c);
-    char* end = nullptr;
-    const double v = std::strtod(s.c_str(), &end);
-    if (s.empty() || end != s.c_str() + s.size())
-      throw ctx_.error(line_, c, "not a number: '" + s + "'");
-    if (!std::isfinite(v)) throw ctx_.error(line_, c, "not a finite number: '" + s + "'");
-    return v;
+    if (const std::optional<double> v = parseDecimal(text(c))) return *v;
+    throw ctx_.error(line_, c, decimalProblem(text(c)));
   }
   template <std::size_t N> Vec4 four(const std::array<const char*, N>& names) const {
     return Vec4(number(names[0]), number(names[1]), number(names[2]), number(names[3]));
@@ -94,7 +89,7 @@ std::map<std::string, int> readHeader(const CsvContext& ctx, const std::string& 
       const std::size_t n = group == kRequired.data() ? kRequired.size() : 4;
       for (std::size_t k = 0; k < n; ++k) known = known || names[i] == group[k];
     }
-    if (!known) throw ctx.error(1, names[i], "unknown column");
+    if (!known) throw ctx.error(1, printable(names[i]), "unknown column");
     if (!columns.emplace(names[i], static_cast<int>(i)).second)
       throw ctx.error(1, names[i], "duplicate column");
   }
@@ -112,15 +107,15 @@ void appendRow(const RowReader& row, MeasuredData& d) {
   d.q.emplace_back(row.number("alpha"), row.number("delta1"), row.number("delta2"),
                    row.number("delta3"), row.number("delta4"));
   const std::string& ph = row.text("phase");
-  if (ph != "SS" && ph != "DS") throw row.error("phase", "must be SS or DS, got '" + ph + "'");
+  if (ph != "SS" && ph != "DS") throw row.error("phase", "must be SS or DS, got '" + printable(ph) + "'");
   d.phase.push_back(ph == "SS" ? Phase::SingleSupport : Phase::DoubleSupport);
   const std::string& st = row.text("stance");
   if (st != "left" && st != "right")
-    throw row.error("stance", "must be left or right, got '" + st + "'");
+    throw row.error("stance", "must be left or right, got '" + printable(st) + "'");
   d.stance.push_back(st == "left" ? Stance::Left : Stance::Right);
   const double step = row.number("step");
   if (step != std::floor(step) || std::abs(step) > 1e15)
-    throw row.error("step", "must be an integer, got '" + row.text("step") + "'");
+    throw row.error("step", "must be an integer, got '" + printable(row.text("step")) + "'");
   if (!d.step.empty() && step < d.step.back())
     throw row.error("step", "must not decrease, got " + row.text("step") + " after " +
                                 std::to_string(d.step.back()));

@@ -81,7 +81,7 @@ TEST_CASE("gaitopt impact: bad input exits 2 naming the problem", "[impact]") {
   lifted(0) += 0.01;
   expectBad(" --q=" + numbers(lifted) + good_qd + " --mu 0.7", "foot 2 height z2 = ");
   expectBad(good_q + " --qd=" + numbers(-qd) + " --mu 0.7", "V2z = 0.5");
-  expectBad(good_q + good_qd + " --mu -0.1", "--mu: friction coefficient");
+  expectBad(good_q + good_qd + " --mu -0.1", "--mu: must be in [0, 100], got -0.1");
 }
 
 TEST_CASE("gaitopt impact-map: exact theta-intervals agree with the solver", "[impact]") {

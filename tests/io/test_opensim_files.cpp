@@ -79,7 +79,7 @@ TEST_CASE("damaged .mot files are refused naming file, column and line", "[opens
   }
   SECTION("non-numeric value") {
     const std::string p = writeDamaged(dir, lines, {{8, field4("abc")}}, ".mot");
-    requireConfigError(load, p, "ground_force_vz", 8, "not a number: 'abc'");
+    requireConfigError(load, p, "ground_force_vz", 8, "not a finite number: 'abc'");
   }
   SECTION("NaN") {
     const std::string p = writeDamaged(dir, lines, {{8, field4("nan")}}, ".mot");
@@ -142,7 +142,7 @@ TEST_CASE("damaged .trc files are refused naming file, column and line", "[opens
   }
   SECTION("non-numeric time") {
     const std::string p = writeDamaged(dir, lines, {{7, replacedOnce(lines[6], "0.000000", "t0")}}, ".trc");
-    requireConfigError(load, p, "Time", 7, "not a number: 't0'");
+    requireConfigError(load, p, "Time", 7, "not a finite number: 't0'");
   }
   SECTION("units other than mm or m") {
     const std::string p = writeDamaged(dir, lines, {{3, replacedOnce(lines[2], "mm", "cm")}}, ".trc");
