@@ -52,6 +52,17 @@ CLI::Validator integerWithin(long long lo, long long hi) {
       "INTEGER in " + range);
 }
 
+void requireSampleRows(const std::string& options, double steps, double step_duration,
+                       double rate) {
+  const double rows = steps * step_duration * rate;
+  if (rows > kMaxSampleRows)
+    throw CLI::ValidationError(
+        options, shortNumber(steps, "%g") + " steps of " + shortNumber(step_duration, "%.3g") +
+                     " s at " + shortNumber(rate, "%g") + " Hz make " + shortNumber(rows, "%.3g") +
+                     " rows, more than the limit of " + shortNumber(kMaxSampleRows, "%g") +
+                     "; give fewer steps or a lower rate");
+}
+
 std::function<bool(const std::string&)> ourOutputs(const SolverSettings* solver) {
   std::string ipopt_output;
   if (solver) {

@@ -22,6 +22,15 @@ std::string shortNumber(double v, const char* format = "%.6g");
 // printable, cut at 200 bytes.
 CLI::Validator numberWithin(double lo, double hi, bool lo_open = false,
                             const std::string& unit = "");
+// Rows of a sampled walk (export, simulate) beyond which a run is refused: 2e5 rows keep it
+// within about 1 GB and a minute (README, "Input limits"; scripts/measure_input_limits.sh).
+constexpr double kMaxSampleRows = 2e5;
+
+// Bad input (CLI::ValidationError at `options`) when `steps` steps of `step_duration` s sampled
+// at `rate` Hz make more than kMaxSampleRows rows; checked before any sampling.
+void requireSampleRows(const std::string& options, double steps, double step_duration,
+                       double rate);
+
 // Whole-number options: digits with at most one leading '-' (no '+', point, exponent, hex), in
 // [lo, hi]: `--seed -1` is refused, not wrapped.
 CLI::Validator integerWithin(long long lo, long long hi);

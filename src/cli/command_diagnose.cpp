@@ -76,6 +76,7 @@ void registerDiagnoseCommand(CLI::App& app, int& exit_code) {
     if (!args->effects.empty()) options.kinds = parseKinds(args->effects);
     const RobotParams robot = loadRobot(args->robot);
     const MeasuredData data = readMeasuredCsv(args->data);
+    requirePlausibleTorques(data, robot, args->data);
     OutputTransaction output({{"--robot", args->robot}, {"--data", args->data}});
     const std::filesystem::path dir = output.directory(
         "--out", args->out, {"diagnosis.json", "residuals.csv", "report.md", "extended_robot.yaml"});

@@ -140,6 +140,8 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
       exit_code = kExitUndefined;
       return;
     }
+    requireSampleRows("--steps, --rate", args->steps + (args->ramp ? 2 * args->ramp_steps : 0),
+                      e.motion.T_SS + e.motion.T_DS, args->rate);
     ExportRequest req;
     req.steps = args->steps;
     req.rate = args->rate;

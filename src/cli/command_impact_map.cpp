@@ -26,6 +26,9 @@ struct ImpactMapArgs {
 };
 
 constexpr double kDeg = M_PI / 180.0;
+// Grid points (μ samples × θ samples) of one map: 10^6 keep a run within a few seconds (the
+// differential model about ten times more) and a quarter of a GB (README, "Input limits").
+constexpr long long kMaxMapPoints = 1000000;
 
 std::string labels(const std::vector<ImpactBehaviour>& behaviours) {
   if (behaviours.empty()) return "none";
@@ -69,6 +72,10 @@ int runImpactMap(const ImpactMapArgs& args) {
   const SampleRange mu = parseSampleRange("--mu-range", args.mu_range);
   const SampleRange theta = parseSampleRange("--theta-range", args.theta_range);
   requireFriction("--mu-range", std::min(mu.a, mu.b));
+  if (static_cast<long long>(mu.n) * theta.n > kMaxMapPoints)
+    throw BadImpactInput("--mu-range, --theta-range: " + std::to_string(mu.n) + " x " +
+                         std::to_string(theta.n) + " points, more than the limit of " +
+                         std::to_string(kMaxMapPoints));
   requireFoot2OnGround(model, q);
   OutputTransaction output({{"--robot", args.robot}});
   const std::string dir = output.directory("--out", args.out, {"map.csv", "intervals.csv"});

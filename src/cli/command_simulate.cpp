@@ -136,6 +136,8 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
       exit_code = kExitUndefined;
       return;
     }
+    requireSampleRows("--steps, --sample-rate", args->steps, e.motion.T_SS + e.motion.T_DS,
+                      args->sample_rate);
     const WalkResult r = simulateWalk(
         e, controller, plant, req,
         gaitTouchdown(gait.options, args->impact, req.plant_friction_coefficient));

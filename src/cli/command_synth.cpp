@@ -33,9 +33,9 @@ void registerSynthCommand(CLI::App& app, int& exit_code) {
       "walk the gait.");
   cmd->add_option("--robot", args->robot, "Nominal robot YAML file")->required();
   cmd->add_option("--gait", args->gait, "Gait YAML file (its parameters and options)")->required();
-  cmd->add_option("--steps", args->options.steps, "Number of steps (>= 3)")
+  cmd->add_option("--steps", args->options.steps, "Number of steps, 3 to 300 (a file diagnose reads: 10^5 samples)")
       ->required()
-      ->check(integerWithin(3, 100000));
+      ->check(integerWithin(3, 300));
   cmd->add_option("--effect", args->effects,
                   "Hidden effect NAME[@JOINT]=VALUE (repeatable), e.g. coulomb@knee_right=3.2");
   cmd->add_option("--noise", args->noise, "default (2^14 counts/rev, 0.3 N·m, 2 N) or none")

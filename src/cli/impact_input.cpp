@@ -38,9 +38,9 @@ SampleRange parseSampleRange(const std::string& option, const std::string& text)
   SampleRange r{0.0, 0.0, 0};
   double n = 0.0;
   const bool ok = parts.size() == 3 && parseDouble(parts[0], r.a) && parseDouble(parts[1], r.b) &&
-                  parseDouble(parts[2], n) && n >= 1.0 && n <= 100000.0 && n == std::floor(n);
+                  parseDouble(parts[2], n) && n >= 1.0 && n <= 10000.0 && n == std::floor(n);
   if (!ok)
-    throw BadImpactInput(option + ": expected a:b:n (finite a, b; integer 1 <= n <= 100000), got '" +
+    throw BadImpactInput(option + ": expected a:b:n (finite a, b; integer 1 <= n <= 10000), got '" +
                          printable(text) + "'");
   r.n = static_cast<int>(n);
   return r;

@@ -1,5 +1,6 @@
 #include "gaitopt/io/measured_data.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -104,6 +105,11 @@ void appendRow(const RowReader& row, MeasuredData& d) {
     throw row.error("t", "time must increase, got " + formatDouble(t) + " after " +
                              formatDouble(d.t.back()));
   d.t.push_back(t);
+  const std::array<const char*, 5> angles = {"alpha", "delta1", "delta2", "delta3", "delta4"};
+  for (const char* c : angles)
+    if (std::abs(row.number(c)) > kMaxMeasuredAngle)
+      throw row.error(c, "angle " + printable(row.text(c)) + " rad is beyond two turns (" +
+                             formatDouble(kMaxMeasuredAngle) + " rad): not radians of a joint");
   d.q.emplace_back(row.number("alpha"), row.number("delta1"), row.number("delta2"),
                    row.number("delta3"), row.number("delta4"));
   const std::string& ph = row.text("phase");
@@ -141,6 +147,26 @@ void checkSteps(const CsvContext& ctx, const MeasuredData& d, const std::vector<
                         std::to_string(kMinSteps));
 }
 
+// Time may jump only between steps: inside one, no gap over kMaxGapInSamples times the median
+// sample interval.
+void checkTimeGaps(const CsvContext& ctx, const MeasuredData& d, const std::vector<int>& lines) {
+  std::vector<double> gaps;
+  for (std::size_t i = 1; i < d.size(); ++i)
+    if (d.step[i] == d.step[i - 1]) gaps.push_back(d.t[i] - d.t[i - 1]);
+  if (gaps.empty()) return;
+  std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+  const double median = gaps[gaps.size() / 2];
+  for (std::size_t i = 1; i < d.size(); ++i) {
+    const double gap = d.t[i] - d.t[i - 1];
+    if (d.step[i] == d.step[i - 1] && gap > kMaxGapInSamples * median)
+      throw ctx.error(lines[i], "t",
+                      "gap of " + formatDouble(gap) + " s inside step " +
+                          std::to_string(d.step[i]) + ", over " + formatDouble(kMaxGapInSamples) +
+                          " times the median sample interval (" + formatDouble(median) +
+                          " s): time may jump only between steps");
+  }
+}
+
 }  // namespace
 
 MeasuredData readMeasuredCsv(const std::string& path) {
@@ -159,6 +185,9 @@ MeasuredData readMeasuredCsv(const std::string& path) {
     const std::string& line = text[i];
     const int number = static_cast<int>(i) + 1;
     if (line.empty()) continue;
+    if (lines.size() == kMaxMeasuredRows)
+      throw ctx.error(number, "", "more than " + std::to_string(kMaxMeasuredRows) +
+                                      " samples (limit)");
     const std::vector<std::string> cells = splitCsvLine(line);
     if (cells.size() != columns.size())
       throw ctx.error(number, "", "has " + std::to_string(cells.size()) + " cells, header has " +
@@ -167,7 +196,25 @@ MeasuredData readMeasuredCsv(const std::string& path) {
     lines.push_back(number);
   }
   checkSteps(ctx, d, lines);
+  checkTimeGaps(ctx, d, lines);
   return d;
+}
+
+void requirePlausibleTorques(const MeasuredData& data, const RobotParams& robot,
+                             const std::string& path) {
+  double envelope = 0.0;
+  for (double torque : robot.envelope.torque) envelope = std::max(envelope, torque);
+  const double limit = kMaxTorqueEnvelopeMultiple * envelope;
+  for (std::size_t k = 0; k < data.gamma.size(); ++k)
+    for (int j = 0; j < 4; ++j)
+      if (std::abs(data.gamma[k](j)) > limit)
+        throw ConfigError(path, "", 0,
+                          "column '" + std::string(kTorque[j]) + "', sample " +
+                              std::to_string(k + 1) + " (t = " + formatDouble(data.t[k]) +
+                              " s): " + formatDouble(data.gamma[k](j)) + " N m is beyond " +
+                              formatDouble(kMaxTorqueEnvelopeMultiple) +
+                              " times the robot's largest envelope torque (" +
+                              formatDouble(envelope) + " N m)");
 }
 
 std::string measuredCsv(const MeasuredData& d) {

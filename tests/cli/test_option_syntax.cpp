@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,10 @@ TEST_CASE("option syntax: numbers are decimal, finite and in range", "[reliabili
                             quoted(out) + " --steps 3 ";
   const std::string opensim = "import-opensim --ik " + quoted(opensimIk()) + " --grf " +
                               quoted(opensimGrf()) + " --out " + quoted(out) + " ";
+  // A double-support configuration with foot 2 on the ground (test::walkingImpactQ).
+  const std::string map = "impact-map --robot " + robot + " --out " + quoted(out) +
+                          " --q=-0.4,-2.8415926535897933,-3.3415926535897933,"
+                          "0.50741499796637735,-2.7987334866164235 ";
   struct Case {
     std::string args, message;
   };
@@ -59,6 +64,16 @@ TEST_CASE("option syntax: numbers are decimal, finite and in range", "[reliabili
       {opensim + "--cutoff nan", "--cutoff: not a finite number: 'nan'"},
       {opensim + "--cutoff 0", "--cutoff: must be in (0, 1000] Hz, got 0"},
       {opensim + "--belt-speed inf", "--belt-speed: not a finite number: 'inf'"},
+      // Ranges that bound a run's time and memory (README, "Input limits").
+      {synth + "--steps 301", "--steps: must be in [3, 300], got 301"},
+      {exporter + "--steps 100000 --rate 100000",
+       "--steps, --rate: 100000 steps of 0.6"},
+      {exporter + "--steps 400 --rate 1000", "rows, more than the limit of 200000"},
+      {"simulate --gait " + gait + " --out " + quoted(out) + " --steps 10000 --sample-rate 1e5",
+       "--steps, --sample-rate: 10000 steps of"},
+      {map + "--mu-range 0:1:100000", "integer 1 <= n <= 10000"},
+      {map + "--mu-range 0:1:10000 --theta-range=-180:0:101",
+       "--mu-range, --theta-range: 10000 x 101 points, more than the limit of 1000000"},
   };
   for (const Case& c : cases) {
     const CliRun run = runCli(c.args);
@@ -77,6 +92,24 @@ TEST_CASE("option syntax: numbers are decimal, finite and in range", "[reliabili
     CHECK_THAT(run.err, Contains(std::string(200, 'x') + "..."));
     CHECK(run.err.find(std::string(201, 'x')) == std::string::npos);
   }
+}
+
+TEST_CASE("option syntax: diagnose refuses torques far beyond the robot's envelope",
+          "[reliability][cli]") {
+  std::string csv = readFile(sourcePath("fuzz/seeds/measured.csv"));
+  csv.replace(csv.find("\n0,-0.2,-2.8,-3.4,0,-2.9,SS,left,0,0,"), 37,
+              "\n0,-0.2,-2.8,-3.4,0,-2.9,SS,left,0,1e30,");
+  const std::string data = scratch().fresh("huge") + ".csv";
+  std::ofstream(data) << csv;
+  const std::string out = scratch().fresh("out");
+  const CliRun run = runCli("diagnose --robot " +
+                            quoted(sourcePath("configs/robot/rabbit_miossec.yaml")) + " --data " +
+                            quoted(data) + " --out " + quoted(out));
+  INFO(run.err);
+  CHECK(run.exit_code == 2);
+  CHECK_THAT(run.err, Contains(data + ": column 'gamma1', sample 1 (t = 0 s): 1e+30 N m is beyond "
+                                      "10 times the robot's largest envelope torque (140 N m)"));
+  CHECK_FALSE(fs::exists(out));
 }
 
 TEST_CASE("option syntax: inputs are regular files, a FIFO does not block", "[reliability][cli]") {

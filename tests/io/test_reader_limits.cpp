@@ -13,9 +13,12 @@
 #include "gaitopt/io/measured_data.hpp"
 #include "gaitopt/io/opensim_table.hpp"
 #include "gaitopt/io/optimize_config.hpp"
+#include "gaitopt/io/robot_file.hpp"
+#include "gaitopt/math/decimal.hpp"
 #include "gaitopt/io/yaml_reader.hpp"
 #include "gaitopt/io/sweep_file.hpp"
 #include "test_files.hpp"
+#include "test_opensim_data.hpp"
 #include "test_support.hpp"
 
 using Catch::Matchers::Contains;
@@ -121,4 +124,67 @@ TEST_CASE("bad input: table cells are decimal numbers; a byte order mark is acce
   std::ofstream(hex_path) << hex;
   CHECK_THROWS_WITH(gaitopt::readMeasuredCsv(hex_path),
                     Contains(hex_path + ":2: row 1, column 't': not a decimal number: '0x0'"));
+}
+
+TEST_CASE("bad input: implausible measured data is refused at its row and column",
+          "[reliability]") {
+  gaitopt::test::ScratchDir dir("reader_plausible", "input");
+  const std::vector<std::string> seed =
+      gaitopt::test::fileLines(gaitopt::test::sourcePath("fuzz/seeds/measured.csv"));
+  // The seed with the cell of `column` (0-based) of data row `row` (1-based) replaced.
+  const auto withCell = [&](std::vector<std::string> lines, int row, int column,
+                            const std::string& value) {
+    std::vector<std::string> cells = gaitopt::splitFields(lines[row]);
+    cells[column] = value;
+    std::string line;
+    for (const std::string& c : cells) line += (line.empty() ? "" : ",") + c;
+    lines[row] = line;
+    return lines;
+  };
+  const auto write = [&](const std::vector<std::string>& lines) {
+    const std::string path = dir.fresh("data") + ".csv";
+    std::ofstream out(path);
+    for (const std::string& l : lines) out << l << "\n";
+    return path;
+  };
+  const auto refused = [&](const std::vector<std::string>& lines, const std::string& problem) {
+    const std::string path = write(lines);
+    CHECK_THROWS_WITH(gaitopt::readMeasuredCsv(path), Contains(path + ":") && Contains(problem));
+  };
+  refused(withCell(seed, 7, 1, "1e6"),
+          ":8: row 7, column 'alpha': angle 1e6 rad is beyond two turns");
+  refused(withCell(seed, 30, 4, "-400"), "row 30, column 'delta3': angle -400 rad");
+  // One hour inside step 1 (rows 21 to 40), the rest of the file shifted with it.
+  std::vector<std::string> gap = seed;
+  for (int row = 25; row < static_cast<int>(gap.size()); ++row) {
+    const double t = std::stod(gaitopt::splitFields(gap[row])[0]) + 3600.0;
+    gap = withCell(gap, row, 0, gaitopt::formatDouble(t));
+  }
+  refused(gap, ":26: row 25, column 't': gap of 3600.");
+  refused(gap, "inside step 1, over 10 times the median sample interval (0.01");
+  // The same hour between steps 1 and 2 is accepted.
+  std::vector<std::string> between = seed;
+  for (int row = 41; row < static_cast<int>(between.size()); ++row) {
+    const double t = std::stod(gaitopt::splitFields(between[row])[0]) + 3600.0;
+    between = withCell(between, row, 0, gaitopt::formatDouble(t));
+  }
+  CHECK_NOTHROW(gaitopt::readMeasuredCsv(write(between)));
+
+  // Torques far beyond the robot's envelope (140 N m): refused for diagnose.
+  const gaitopt::RobotParams robot =
+      gaitopt::loadRobot(gaitopt::test::sourcePath("configs/robot/rabbit_miossec.yaml"));
+  const std::string huge = write(withCell(seed, 12, 10, "1e30"));
+  const gaitopt::MeasuredData data = gaitopt::readMeasuredCsv(huge);
+  CHECK_THROWS_WITH(gaitopt::requirePlausibleTorques(data, robot, huge),
+                    Contains(huge + ": column 'gamma2', sample 12 (t = 0.11 s): 1e+30 N m is "
+                                    "beyond 10 times the robot's largest envelope torque (140 N m)"));
+  CHECK_NOTHROW(gaitopt::requirePlausibleTorques(
+      gaitopt::readMeasuredCsv(write(withCell(seed, 12, 10, "1399"))), robot, huge));
+
+  // More rows than the limit: refused at the first one over it.
+  std::vector<std::string> many{seed[0]};
+  for (std::size_t k = 0; k <= gaitopt::kMaxMeasuredRows; ++k)
+    many.push_back(std::to_string(k * 0.001) + ",0,0,0,0,0,SS,left," + std::to_string(k / 50) +
+                   ",0,0,0,0,0,300,0,0");
+  refused(many, ":100002: row 100001, column '': more than 100000 samples (limit)");
 }
