@@ -149,7 +149,9 @@ fs::path fileTarget(const std::string& option, const std::string& out) {
     throw OutputError(quote(option, out) + ": its directory '" + parent.string() +
                       "' does not exist");
   }
-  return fs::canonical(parent, ec) / name;
+  const fs::path real = fs::canonical(parent, ec);
+  if (ec) throw OutputError(quote(option, out) + ": " + ec.message());
+  return real / name;
 }
 
 void requireOnlyOurs(const fs::path& target, const std::string& option, const std::string& out,

@@ -7,6 +7,7 @@
 #include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/tab_text.hpp"
+#include "gaitopt/io/yaml_reader.hpp"
 
 namespace gaitopt {
 
@@ -114,8 +115,14 @@ TrcData readTrcFile(const std::string& path) {
     }
     for (std::size_t c = 2; c < n_fields; ++c) {
       const std::string column = trc.markers[(c - 2) / 3] + "." + "XYZ"[(c - 2) % 3];
-      trc.positions(frame, static_cast<Eigen::Index>(c - 2)) =
-          h.unit * parseCsvNumber(fields[c], path, column, line);
+      const double x = h.unit * parseCsvNumber(fields[c], path, column, line);
+      if (std::abs(x) > kMaxMarkerDistance)
+        throw ConfigError(path, column, line,
+                          printable(fields[c]) + " " + (h.unit == 1.0 ? "m" : "mm") +
+                              " lies beyond " + showNumber(kMaxMarkerDistance) +
+                              " m of the origin: check the header's Units (millimetres "
+                              "declared as m?)");
+      trc.positions(frame, static_cast<Eigen::Index>(c - 2)) = x;
     }
     ++frame;
     last_line = line;
@@ -125,6 +132,10 @@ TrcData readTrcFile(const std::string& path) {
                       "the file has " + std::to_string(frame) + " frames but its header says NumFrames=" +
                           std::to_string(h.frames) + " (truncated file)");
   }
+  if (frame > 0 && trc.positions.cwiseAbs().maxCoeff() < kMinMarkerSpread)
+    throw ConfigError(path, "Units", 3,
+                      "every marker lies within " + showNumber(kMinMarkerSpread) +
+                          " m of the origin: check the header's Units (metres declared as mm?)");
   return trc;
 }
 

@@ -3,7 +3,9 @@
 #include <catch2/catch.hpp>
 
 #include "gaitopt/io/opensim_table.hpp"
+#include "gaitopt/io/tab_text.hpp"
 #include "gaitopt/io/trc_file.hpp"
+#include "gaitopt/math/decimal.hpp"
 #include "test_opensim_data.hpp"
 
 using namespace gaitopt;
@@ -147,5 +149,31 @@ TEST_CASE("damaged .trc files are refused naming file, column and line", "[opens
   SECTION("units other than mm or m") {
     const std::string p = writeDamaged(dir, lines, {{3, replacedOnce(lines[2], "mm", "cm")}}, ".trc");
     requireConfigError(load, p, "Units", 3, "must be 'mm' or 'm'");
+  }
+  SECTION("millimetre data declared as metres") {
+    const std::string p = writeDamaged(dir, lines, {{3, replacedOnce(lines[2], "mm", "m")}}, ".trc");
+    try {
+      load(p);
+      FAIL("no ConfigError");
+    } catch (const ConfigError& e) {
+      CHECK(e.line() == 7);  // the first frame
+      CHECK_THAT(std::string(e.what()), Contains(" m lies beyond 50 m of the origin: check the "
+                                                 "header's Units (millimetres declared as m?)"));
+    }
+  }
+  SECTION("metre data declared as millimetres") {
+    std::vector<std::string> metres = lines;
+    for (std::size_t i = 5; i < metres.size(); ++i) {
+      std::vector<std::string> f = splitTabFields(metres[i], "", 0);
+      if (f.size() < 3) continue;
+      std::string row = f[0] + "\t" + f[1];
+      for (std::size_t c = 2; c < f.size(); ++c)
+        row += "\t" + formatDouble(std::stod(f[c]) * 1e-3);
+      metres[i] = row;
+    }
+    const std::string p = writeDamaged(dir, metres, {}, ".trc");
+    requireConfigError(load, p, "Units", 3,
+                       "every marker lies within 0.05 m of the origin: check the header's Units "
+                       "(metres declared as mm?)");
   }
 }
