@@ -213,29 +213,47 @@ TEST_CASE("output safety: stale staging folders of ended runs are removed, live 
   CHECK(fs::exists(locked));            // locked: its run is alive
 }
 
-TEST_CASE("output safety: a killed simulate leaves the old or the new result, never a mix",
+TEST_CASE("output safety: a killed run leaves the old or the new result, never a mix",
           "[reliability][cli]") {
   const Sandbox box;
-  const std::string old_run = "simulate --steps 1 --gait " + quoted(kGait) + " --out ";
-  const std::string new_run = "simulate --steps 30 --gait " + quoted(kGait) + " --out ";
-  REQUIRE(box.run(new_run + "reference").exit_code == 0);
-  const auto reference = snapshot(box.dir / "reference");
-  REQUIRE(box.run(old_run + "walk").exit_code == 0);
-  const auto old = snapshot(box.dir / "walk");
-  REQUIRE(old != reference);
-  int killed = 0;
-  for (const char* delay : {"0.05", "0.2", "0.3", "0.35", "0.4", "0.45", "0.5", "0.6", "0.8", "1.2"}) {
-    const CliRun run = box.run("--version >/dev/null; timeout -s KILL " + std::string(delay) + " " +
-                               quoted(GAITOPT_CLI) + " " + new_run + "walk");
-    INFO("killed after " << delay << " s, exit " << run.exit_code);
-    killed += run.exit_code == 137;
-    const auto now = snapshot(box.dir / "walk");
-    CHECK((now == old || now == reference));
-    if (now == reference) REQUIRE(box.run(old_run + "walk").exit_code == 0);  // old again
-  }
-  CHECK(killed > 0);  // at least one run was really killed mid-way
-  // A killed run leaves its staging folder; the next run removes it once it is stale.
-  for (const std::string& name : stagingEntries(box.dir)) backdate(box.dir / name);
-  REQUIRE(box.run(old_run + "walk").exit_code == 0);
-  CHECK(stagingEntries(box.dir).empty());
+  // `old_run` then `new_run` write the same files with other content into OUT; `new_run` is
+  // killed (SIGKILL) after each delay: OUT must then hold the complete old or the complete new
+  // result (its complete reference run), whatever the moment.
+  const auto requireOldOrNew = [&](const std::string& old_run, const std::string& new_run,
+                                   const std::vector<std::string>& delays) {
+    REQUIRE(box.run(new_run + " --out reference").exit_code == 0);
+    const auto reference = snapshot(box.dir / "reference");
+    REQUIRE(box.run(old_run + " --out walk").exit_code == 0);
+    const auto old = snapshot(box.dir / "walk");
+    REQUIRE(old != reference);
+    int killed = 0;
+    for (const std::string& delay : delays) {
+      const CliRun run = box.run("--version >/dev/null; timeout -s KILL " + delay + " " +
+                                 quoted(GAITOPT_CLI) + " " + new_run + " --out walk");
+      INFO(new_run << ": killed after " << delay << " s, exit " << run.exit_code);
+      killed += run.exit_code == 137;
+      const auto now = snapshot(box.dir / "walk");
+      CHECK((now == old || now == reference));
+      if (now == reference) REQUIRE(box.run(old_run + " --out walk").exit_code == 0);
+    }
+    CHECK(killed > 0);  // at least one run was really killed mid-way
+    // A killed run leaves its staging folder; the next run removes it once it is stale.
+    for (const std::string& name : stagingEntries(box.dir)) backdate(box.dir / name);
+    REQUIRE(box.run(old_run + " --out walk").exit_code == 0);
+    CHECK(stagingEntries(box.dir).empty());
+    fs::remove_all(box.dir / "reference");
+    fs::remove_all(box.dir / "walk");
+  };
+  // simulate: 4 files, about 0.5 s for 30 steps, written at the end.
+  const std::string gait = quoted(kGait);
+  requireOldOrNew("simulate --steps 1 --gait " + gait, "simulate --steps 30 --gait " + gait,
+                  {"0.05", "0.2", "0.3", "0.35", "0.4", "0.45", "0.5", "0.6", "0.8", "1.2"});
+  // diagnose: 4 files, about 1 s on 6 synthetic steps with a hidden knee friction.
+  const std::string robot = quoted(kRobot);
+  REQUIRE(box.run("synth --steps 6 --effect coulomb@knee_left=4 --robot " + robot + " --gait " +
+                  gait + " --out data.csv")
+              .exit_code == 0);
+  const std::string diagnose = "diagnose --quiet --robot " + robot + " --data data.csv";
+  requireOldOrNew(diagnose + " --effects viscous", diagnose,
+                  {"0.1", "0.4", "0.7", "0.8", "0.9", "1.0", "1.1", "1.3", "2"});
 }
