@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "gaitopt/io/opensim_table.hpp"
+#include "gaitopt/io/opensim_trial_file.hpp"
 #include "gaitopt/io/tab_text.hpp"
 #include "gaitopt/io/trc_file.hpp"
 #include "gaitopt/math/decimal.hpp"
@@ -176,4 +177,30 @@ TEST_CASE("damaged .trc files are refused naming file, column and line", "[opens
                        "every marker lies within 0.05 m of the origin: check the header's Units "
                        "(metres declared as mm?)");
   }
+}
+
+TEST_CASE("an IK file's inDegrees flag is checked against its angles", "[opensim_io]") {
+  ScratchDir dir("opensim_units");
+  const std::vector<std::string> lines = fileLines(opensimIk());
+  const auto recording = [&](const std::string& ik) {
+    return readOpenSimRecording({ik, opensimGrf(), ""});
+  };
+  // Degrees declared as radians: pelvis_tilt 10.33 "rad" on the first data row.
+  const std::string no = writeDamaged(dir, lines, {{5, "inDegrees=no"}}, ".mot");
+  requireConfigError(recording, no, "pelvis_tilt", 12,
+                     "angle 10.33 rad with inDegrees=no is beyond half a turn: degrees declared "
+                     "as radians?");
+  // Radians declared as degrees: every angle column converted to radians, the flag kept.
+  std::vector<std::string> radians = lines;
+  for (std::size_t i = 11; i < radians.size(); ++i) {
+    std::vector<std::string> f = splitTabFields(radians[i], "", 0);
+    std::string row = f[0];
+    for (std::size_t c = 1; c < f.size(); ++c)
+      row += "\t" + (c == 2 || c == 3 ? f[c] : formatDouble(std::stod(f[c]) * M_PI / 180.0));
+    radians[i] = row;
+  }
+  requireConfigError(recording, writeDamaged(dir, radians, {}, ".mot"), "knee_angle_r", 12,
+                     "the knee moves by less than 10 degrees over the trial with inDegrees=yes: "
+                     "radians declared as degrees?");
+  CHECK_NOTHROW(recording(opensimIk()));
 }
