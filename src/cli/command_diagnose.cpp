@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "gaitopt/ident/diagnose.hpp"
 #include "gaitopt/io/output_transaction.hpp"
+#include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/diagnosis_file.hpp"
 #include "gaitopt/io/measured_data.hpp"
 #include "gaitopt/io/robot_file.hpp"
@@ -35,7 +36,7 @@ std::vector<EffectKind> parseKinds(const std::string& list) {
         kinds.push_back(static_cast<EffectKind>(k));
         found = true;
       }
-    if (!found) throw CLI::ValidationError("--effects", "unknown effect '" + name + "'");
+    if (!found) throw CLI::ValidationError("--effects", "unknown effect '" + printable(name) + "'");
   }
   return kinds;
 }

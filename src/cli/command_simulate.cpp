@@ -4,11 +4,14 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "gaitopt/export/controller_export.hpp"
+#include "gaitopt/io/config_error.hpp"
+#include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/robot_file.hpp"
 #include "gaitopt/io/simulation_report.hpp"
@@ -34,14 +37,12 @@ void applyPerturbation(const std::string& text, WalkRequest& req) {
   const std::size_t eq = text.find('=');
   static const std::map<std::string, int> coordinate{
       {"alpha", 0}, {"delta1", 1}, {"delta2", 2}, {"delta3", 3}, {"delta4", 4}};
-  double v = 0.0;
-  try {
-    std::size_t used = 0;
-    v = std::stod(text.substr(eq == std::string::npos ? text.size() : eq + 1), &used);
-    if (eq + 1 + used != text.size()) throw std::invalid_argument("trailing");
-  } catch (const std::exception&) {
-    throw CLI::ValidationError("--perturb", "expected KIND=VALUE, got '" + text + "'");
-  }
+  const std::optional<double> parsed =
+      eq == std::string::npos ? std::nullopt : parseDecimal(text.substr(eq + 1));
+  if (!parsed)
+    throw CLI::ValidationError("--perturb", "expected KIND=VALUE (a decimal VALUE), got '" +
+                                                printable(text) + "'");
+  const double v = *parsed;
   const std::string kind = text.substr(0, eq);
   if (kind == "alphad") {
     req.dalphad0 += v;

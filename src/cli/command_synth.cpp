@@ -8,6 +8,8 @@
 #include "commands.hpp"
 #include "gaitopt/ident/synth.hpp"
 #include "gaitopt/io/output_transaction.hpp"
+#include "gaitopt/io/config_error.hpp"
+#include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/io/measured_data.hpp"
 #include "gaitopt/io/robot_file.hpp"
@@ -47,10 +49,15 @@ void registerSynthCommand(CLI::App& app, int& exit_code) {
   cmd->callback([args, &exit_code]() {
     std::vector<Effect> effects;
     for (const std::string& spec : args->effects) {
+      // The value in the one number syntax of the command line (the parser takes any stod).
+      const std::size_t eq = spec.find('=');
+      if (eq != std::string::npos && !parseDecimal(spec.substr(eq + 1)))
+        throw CLI::ValidationError("--effect", "'" + printable(spec) + "': " +
+                                                   decimalProblem(spec.substr(eq + 1)));
       try {
         effects.push_back(parseEffectSpec(spec));
       } catch (const std::invalid_argument& e) {
-        throw CLI::ValidationError("--effect", "'" + spec + "': " + e.what());
+        throw CLI::ValidationError("--effect", "'" + printable(spec) + "': " + e.what());
       }
     }
     const RobotParams robot = loadRobot(args->robot);

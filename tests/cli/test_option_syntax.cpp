@@ -64,6 +64,10 @@ TEST_CASE("option syntax: numbers are decimal, finite and in range", "[reliabili
       {opensim + "--cutoff nan", "--cutoff: not a finite number: 'nan'"},
       {opensim + "--cutoff 0", "--cutoff: must be in (0, 1000] Hz, got 0"},
       {opensim + "--belt-speed inf", "--belt-speed: not a finite number: 'inf'"},
+      {"simulate --gait " + gait + " --out " + quoted(out) + " --perturb alphad=nan",
+       "--perturb: expected KIND=VALUE (a decimal VALUE), got 'alphad=nan'"},
+      {synth + "--effect coulomb@knee_left=0x10",
+       "--effect: 'coulomb@knee_left=0x10': not a decimal number: '0x10'"},
       // Ranges that bound a run's time and memory (README, "Input limits").
       {synth + "--steps 301", "--steps: must be in [3, 300], got 301"},
       {exporter + "--steps 100000 --rate 100000",
