@@ -94,6 +94,10 @@ TEST_CASE("output safety: bad output locations of every command", "[reliability]
   const std::string stability = "stability --gait " + gait;
   const std::string diagnose = "diagnose --robot " + robot + " --data " +
                                quoted(sourcePath("fuzz/seeds/measured.csv"));
+  const std::string impact_map = "impact-map --robot " + robot +
+                                 " --q=-0.4,-2.8415926535897933,-3.3415926535897933,"
+                                 "0.50741499796637735,-2.7987334866164235";
+  const std::string merge = "sweep-merge " + quoted(sourcePath("tests/data/sample_sweep"));
   const std::string synth = "synth --steps 3 --robot " + robot + " --gait " + gait;
   const std::string model = "export-model --format urdf --robot robot.yaml";
   const std::string exporter = "export --steps 1 --gait " + gait;
@@ -115,6 +119,11 @@ TEST_CASE("output safety: bad output locations of every command", "[reliability]
            quoted(sourcePath("fuzz/seeds/measured.csv")) + " --out previous",
        "--out 'previous' holds the input --robot 'previous/extended_robot.yaml'"},
       {"evaluate --gait " + gait + " --out /", "is the current directory or contains it"},
+      {impact_map + " --out /", "is the current directory or contains it"},
+      {impact_map + " --out precious.txt", "exists and is not a directory"},
+      {impact_map + " --out foreign", "holds 'notes.txt'"},
+      {merge + " --out " + quoted(sourcePath("tests/data/sample_sweep")),
+       "names the input SHARD_DIR"},
       // File results: `/`, `.`, a directory, a missing folder, an input, another output.
       {model + " --out /", "--out '/' is a directory, a file is expected"},
       {model + " --out .", "--out '.' is a directory, a file is expected"},
