@@ -19,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/json_writer.hpp"
 
 namespace gaitopt::bench {

@@ -24,7 +24,7 @@
 #include "gaitopt/ident/diagnose.hpp"
 #include "gaitopt/io/diagnosis_file.hpp"
 #include "gaitopt/impact/solve_impact.hpp"
-#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/io/impact_report.hpp"

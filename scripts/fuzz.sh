@@ -20,9 +20,9 @@ fi
 
 # Seeds of each harness: the shipped files it reads. A new reader adds a line here.
 declare -A SEEDS=(
-  [fuzz_robot_yaml]="configs/robot/*.yaml"
-  [fuzz_gait_yaml]="configs/gait/*.yaml"
-  [fuzz_config_yaml]="configs/*.yaml"
+  [fuzz_robot_yaml]="configs/robot/*.yaml fuzz/seeds/aliases.yaml"
+  [fuzz_gait_yaml]="configs/gait/*.yaml fuzz/seeds/aliases.yaml"
+  [fuzz_config_yaml]="configs/*.yaml fuzz/seeds/aliases.yaml"
   [fuzz_sweep_csv]="fuzz/seeds/sweep.csv"
   [fuzz_measured_csv]="fuzz/seeds/measured.csv"
   [fuzz_opensim_table]="fuzz/seeds/*.mot fuzz/seeds/*.sto"

@@ -12,6 +12,7 @@ import csv
 import json
 import os
 import sys
+import tempfile
 
 import numpy as np
 
@@ -138,13 +139,31 @@ def title(summary, run_dir):
     return "  ".join(p for p in parts if p) + f"\n{run_dir}"
 
 
-def save(kind, fig, out):
-    fig.tight_layout()
+def write_figure(out, write):
+    """Calls write(path) so that `out` is the old or the new figure, never a partial one, and
+    returns the name to report. Under `gaitopt plot` (GAITOPT_PLOT_OUT set) `out` is a fresh
+    name in gaitopt's private staging folder, which gaitopt publishes; run directly, the figure
+    goes to a new random name beside `out` (created exclusively) and is renamed over it."""
+    shown = os.environ.get("GAITOPT_PLOT_OUT")
+    if shown:
+        write(out)
+        return shown
     directory = os.path.dirname(out)
     if directory:
         os.makedirs(directory, exist_ok=True)
-    # Written under a temporary name then renamed, so a failed plot leaves no partial file.
-    tmp = f"{out}.tmp{os.getpid()}{os.path.splitext(out)[1]}"
-    fig.savefig(tmp, dpi=DPI)
-    os.replace(tmp, out)
-    print(f"gaitopt plot {kind}: wrote {out}")
+    fd, tmp = tempfile.mkstemp(dir=directory or ".", prefix=f".{os.path.basename(out)}.",
+                               suffix=os.path.splitext(out)[1])
+    os.close(fd)
+    try:
+        write(tmp)
+        os.replace(tmp, out)
+    except BaseException:
+        os.unlink(tmp)
+        raise
+    return out
+
+
+def save(kind, fig, out):
+    fig.tight_layout()
+    shown = write_figure(out, lambda path: fig.savefig(path, dpi=DPI))
+    print(f"gaitopt plot {kind}: wrote {shown}")

@@ -126,13 +126,8 @@ def main(argv):
                      f"1 m = {NEWTONS_PER_METRE:.0f} N\n{path}", fontsize="small")
 
     anim = FuncAnimation(fig, draw, frames=len(rows))
-    directory = os.path.dirname(out)
-    if directory:
-        os.makedirs(directory, exist_ok=True)
-    tmp = f"{out}.tmp{os.getpid()}.gif"  # then renamed: a failed run leaves no partial file
-    anim.save(tmp, writer=PillowWriter(fps=FPS), dpi=c.DPI)
-    os.replace(tmp, out)
-    print(f"gaitopt plot {KIND}: wrote {out} ({len(rows)} frames at {FPS} fps)")
+    shown = c.write_figure(out, lambda path: anim.save(path, writer=PillowWriter(fps=FPS), dpi=c.DPI))
+    print(f"gaitopt plot {KIND}: wrote {shown} ({len(rows)} frames at {FPS} fps)")
     return 0
 
 

@@ -1,6 +1,7 @@
 #include "cli_common.hpp"
 
 #include "gaitopt/io/config_error.hpp"
+#include "gaitopt/io/csv_table.hpp"
 
 #include <CLI/CLI.hpp>
 #include <cmath>
@@ -27,29 +28,39 @@ CLI::Validator numberWithin(double lo, double hi, bool lo_open, const std::strin
                             shortNumber(hi, "%g") + "]" + (unit.empty() ? "" : " " + unit);
   return CLI::Validator(
       [=](std::string& s) -> std::string {
-        char* end = nullptr;
-        const double v = std::strtod(s.c_str(), &end);
-        const bool plain =
-            !s.empty() && s.find_first_not_of("0123456789+-.eE") == std::string::npos;
-        if (!plain || end != s.c_str() + s.size() || !std::isfinite(v))
-          return "'" + printable(s) + "' is not a finite number";
-        if ((lo_open ? v <= lo : v < lo) || v > hi)
+        const std::optional<double> v = parseDecimal(s);
+        if (!v) return decimalProblem(s);
+        if ((lo_open ? *v <= lo : *v < lo) || *v > hi)
           return "must be in " + range + ", got " + printable(s);
         return "";
       },
       "NUMBER in " + range);
 }
 
-void requireDirectoryOrAbsent(const std::string& out) {
-  std::error_code ec;
-  if (std::filesystem::exists(out, ec) && !std::filesystem::is_directory(out, ec))
-    throw CLI::ValidationError("--out", "'" + out + "' exists and is not a directory");
+CLI::Validator integerWithin(long long lo, long long hi) {
+  const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  return CLI::Validator(
+      [=](std::string& s) -> std::string {
+        const std::size_t digits = s.find_first_not_of('-') == 1 ? 1 : 0;  // one leading '-'
+        const bool whole = s.size() > digits && s.size() - digits <= 18 &&
+                           s.find_first_not_of("0123456789", digits) == std::string::npos;
+        if (!whole) return "'" + printable(s) + "' is not a whole decimal number";
+        const long long v = std::stoll(s);
+        if (v < lo || v > hi) return "must be in " + range + ", got " + printable(s);
+        return "";
+      },
+      "INTEGER in " + range);
 }
 
-void requireFileOutput(const std::string& out) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(out, ec))
-    throw CLI::ValidationError("--out", "'" + out + "' is a directory, a file is expected");
+void requireSampleRows(const std::string& options, double steps, double step_duration,
+                       double rate) {
+  const double rows = steps * step_duration * rate;
+  if (rows > kMaxSampleRows)
+    throw CLI::ValidationError(
+        options, shortNumber(steps, "%g") + " steps of " + shortNumber(step_duration, "%.3g") +
+                     " s at " + shortNumber(rate, "%g") + " Hz make " + shortNumber(rows, "%.3g") +
+                     " rows, more than the limit of " + shortNumber(kMaxSampleRows, "%g") +
+                     "; give fewer steps or a lower rate");
 }
 
 std::function<bool(const std::string&)> ourOutputs(const SolverSettings* solver) {

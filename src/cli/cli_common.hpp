@@ -17,20 +17,27 @@ namespace gaitopt::cli {
 // `v` formatted with the printf `format` (one floating-point conversion).
 std::string shortNumber(double v, const char* format = "%.6g");
 
-// Command-line numbers: a plain decimal number (no inf, nan, hex or trailing text) in
-// [lo, hi] ((lo, hi] when lo_open), echoed as written in the message.
-CLI::Validator numberWithin(double lo, double hi, bool lo_open, const std::string& unit);
+// Every numeric option: a decimal number in io's one syntax (parseDecimal: no inf, nan, hex,
+// blanks or trailing text) in [lo, hi] ((lo, hi] when lo_open); messages quote the value
+// printable, cut at 200 bytes.
+CLI::Validator numberWithin(double lo, double hi, bool lo_open = false,
+                            const std::string& unit = "");
+// Rows of a sampled walk (export, simulate) beyond which a run is refused: 2e5 rows keep it
+// within about 1 GB and a minute (docs/reliability.md; scripts/measure_input_limits.sh).
+constexpr double kMaxSampleRows = 2e5;
 
-// Bad input (CLI::ValidationError at --out) when `out` exists and is not a directory; called
-// before anything is written.
-void requireDirectoryOrAbsent(const std::string& out);
+// Bad input (CLI::ValidationError at `options`) when `steps` steps of `step_duration` s sampled
+// at `rate` Hz make more than kMaxSampleRows rows; checked before any sampling.
+void requireSampleRows(const std::string& options, double steps, double step_duration,
+                       double rate);
 
-// Bad input (CLI::ValidationError at --out) when the output file `out` is a directory.
-void requireFileOutput(const std::string& out);
+// Whole-number options: digits with at most one leading '-' (no '+', point, exponent, hex), in
+// [lo, hi]: `--seed -1` is refused, not wrapped.
+CLI::Validator integerWithin(long long lo, long long hi);
 
 // Whether `name` is an entry gaitopt writes into an output directory (summary.json,
 // gait.yaml, trajectory.csv, sweep.csv, v<speed> folders, or the Ipopt output_file of
-// `solver`); StagedDirectory refuses an existing --out holding anything else.
+// `solver`); OutputTransaction::directory refuses an existing --out holding anything else.
 std::function<bool(const std::string&)> ourOutputs(const SolverSettings* solver = nullptr);
 
 // The criterion of a result; it exists only for a defined step whose motion was computed.

@@ -10,7 +10,8 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "gaitopt/ident/diagnose.hpp"
-#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/output_transaction.hpp"
+#include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/diagnosis_file.hpp"
 #include "gaitopt/io/measured_data.hpp"
 #include "gaitopt/io/robot_file.hpp"
@@ -35,7 +36,7 @@ std::vector<EffectKind> parseKinds(const std::string& list) {
         kinds.push_back(static_cast<EffectKind>(k));
         found = true;
       }
-    if (!found) throw CLI::ValidationError("--effects", "unknown effect '" + name + "'");
+    if (!found) throw CLI::ValidationError("--effects", "unknown effect '" + printable(name) + "'");
   }
   return kinds;
 }
@@ -53,11 +54,11 @@ void registerDiagnoseCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--data", args->data, "Measured-data CSV file")->required();
   cmd->add_option("--out", args->out, "Output directory (created if missing)")->required();
   cmd->add_option("--holdout", args->holdout, "Hold out every K-th step (K >= 2, default 3)")
-      ->check(CLI::Range(2, 1000000));
+      ->check(integerWithin(2, 1000000));
   cmd->add_option("--holdout-shift", args->holdout_shift,
                   "Shift the held-out steps by S (0 <= S < K; with K = 2, 0 and 1 swap the fit "
                   "and held-out halves)")
-      ->check(CLI::Range(0, 1000000));
+      ->check(integerWithin(0, 1000000));
   cmd->add_option("--effects", args->effects,
                   "Comma-separated candidate effects (default: all), e.g. coulomb,viscous");
   cmd->add_flag("--quiet", args->quiet, "No progress lines");
@@ -76,22 +77,23 @@ void registerDiagnoseCommand(CLI::App& app, int& exit_code) {
     if (!args->effects.empty()) options.kinds = parseKinds(args->effects);
     const RobotParams robot = loadRobot(args->robot);
     const MeasuredData data = readMeasuredCsv(args->data);
-    requireDirectoryOrAbsent(args->out);
+    requirePlausibleTorques(data, robot, args->data);
+    OutputTransaction output({{"--robot", args->robot}, {"--data", args->data}});
+    const std::filesystem::path dir = output.directory(
+        "--out", args->out, {"diagnosis.json", "residuals.csv", "report.md", "extended_robot.yaml"});
     Diagnosis d;
     try {
       d = diagnose(robot, ModelOptions{}, data, options);
     } catch (const std::invalid_argument& e) {
       throw CLI::ValidationError("--holdout", e.what());
     }
-    const std::filesystem::path dir(args->out);
     const std::string report = diagnosisReport(d);
-    const std::string json = diagnosisJson(d), csv = residualsCsv(data, d);
-    const std::string yaml = extendedRobotYaml(args->robot, d.extended_robot);
-    std::filesystem::create_directories(dir);
-    writeFileAtomically((dir / "diagnosis.json").string(), json);
-    writeFileAtomically((dir / "residuals.csv").string(), csv);
-    writeFileAtomically((dir / "report.md").string(), report);
-    writeFileAtomically((dir / "extended_robot.yaml").string(), yaml);
+    writeNewFile((dir / "diagnosis.json").string(), diagnosisJson(d));
+    writeNewFile((dir / "residuals.csv").string(), residualsCsv(data, d));
+    writeNewFile((dir / "report.md").string(), report);
+    writeNewFile((dir / "extended_robot.yaml").string(),
+                 extendedRobotYaml(args->robot, d.extended_robot));
+    output.commit();
     const std::size_t first = report.find("\n\n") + 2;  // the sentence after the title
     std::cout << report.substr(first, report.find('\n', first) - first) << "\n";
     exit_code = 0;

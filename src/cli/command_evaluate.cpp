@@ -8,7 +8,7 @@
 #include "cli_common.hpp"
 #include "override_options.hpp"
 #include "commands.hpp"
-#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/gait/evaluator.hpp"
 #include "gaitopt/gait/feasibility.hpp"
 #include "gaitopt/gait/constraint_summary.hpp"
@@ -48,7 +48,8 @@ void registerEvaluateCommand(CLI::App& app, int& exit_code) {
     // Everything that can fail on bad input happens before the output directory is touched.
     GaitFile gait = loadGaitFileWithOverrides(args->gait, overridesOf(args->overrides, "options.target_speed"));
     if (args->sample_rate) gait.options.sample_rate = *args->sample_rate;
-    StagedDirectory staged(args->out, ourOutputs());  // checks --out before any work
+    OutputTransaction output({{"--gait", args->gait}});
+    const fs::path dir = output.directory("--out", args->out, ourOutputs());  // before any work
 
     const GaitEvaluator evaluator(gait.robot, gait.options, gait.model_options);
     const GaitEvaluation<double> e = evaluator.evaluate(gait.parameters);
@@ -61,10 +62,9 @@ void registerEvaluateCommand(CLI::App& app, int& exit_code) {
       csv = trajectoryCsv(sampleTrajectory(evaluator, e, gait.options.sample_rate));
     }
 
-    const fs::path dir(staged.path());
-    writeFileAtomically((dir / "summary.json").string(), summary);
-    if (csv) writeFileAtomically((dir / "trajectory.csv").string(), *csv);
-    staged.commit();
+    writeNewFile((dir / "summary.json").string(), summary);
+    if (csv) writeNewFile((dir / "trajectory.csv").string(), *csv);
+    output.commit();
 
     const bool criteria = defined && e.motion_computed;
     const FeasibilityVerdict verdict = feasibilityVerdict(evaluator, gait.parameters, e);

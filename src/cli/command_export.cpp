@@ -10,7 +10,7 @@
 #include "commands.hpp"
 #include "gaitopt/export/controller_export.hpp"
 #include "gaitopt/export/gait_library.hpp"
-#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 
 namespace gaitopt::cli {
 namespace {
@@ -66,9 +66,10 @@ void exportLibrary(const ExportArgs& args, int& exit_code) {
     exit_code = kExitBadInput;
     return;
   }
-  requireFileOutput(args.out);
   const std::vector<LibraryGait> gaits = loadSweepGaits(args.library);
-  writeFileAtomically(args.out, gaitLibraryJson(gaits, rotorOf(args.rotor)));
+  OutputTransaction output({{"--library", args.library}});
+  writeNewFile(output.file("--out", args.out), gaitLibraryJson(gaits, rotorOf(args.rotor)));
+  output.commit();
   std::cout << "export: library of " << gaits.size() << " gaits, "
             << shortNumber(gaits.front().speed) << " to " << shortNumber(gaits.back().speed)
             << " m/s, rotor " << args.rotor << " -> " << args.out << "\n";
@@ -96,10 +97,10 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
   addOverrideOptions(cmd, args->overrides, nullptr);  // of --gait
   cmd->add_option("--steps", args->steps, "Number of steps (>= 1)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 100000));
+      ->check(integerWithin(1, 100000));
   cmd->add_option("--rate", args->rate, "Sample rate [Hz] (0 < HZ <= 1e5)")
       ->capture_default_str()
-      ->check(CLI::Range(1e-6, 1e5));
+      ->check(numberWithin(0.0, 1e5, true, "Hz"));
   cmd->add_option("--format", args->format, "csv or json")
       ->capture_default_str()
       ->check(CLI::IsMember({"csv", "json"}));
@@ -117,7 +118,7 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
                  "(exit 3 if one is violated)");
   cmd->add_option("--ramp-steps", args->ramp_steps, "Steps of the ramp-in and of the ramp-out")
       ->capture_default_str()
-      ->check(CLI::Range(2, 1000));
+      ->check(integerWithin(2, 1000));
   cmd->add_option("--ramp-out", args->ramp_out,
                   "stop: ramp out to standing still; none: end with the last cyclic step")
       ->capture_default_str()
@@ -132,7 +133,8 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
       exit_code = kExitBadInput;
       return;
     }
-    requireFileOutput(args->out);
+    OutputTransaction output({{"--gait", args->gait}});
+    const std::string staged = output.file("--out", args->out);
     const GaitEvaluator evaluator(gait.robot, gait.options, gait.model_options);
     const GaitEvaluation<double> e = evaluator.evaluate(gait.parameters);
     if (!e.defined() || !e.motion_computed) {
@@ -141,6 +143,8 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
       exit_code = kExitUndefined;
       return;
     }
+    requireSampleRows("--steps, --rate", args->steps + (args->ramp ? 2 * args->ramp_steps : 0),
+                      e.motion.T_SS + e.motion.T_DS, args->rate);
     ExportRequest req;
     req.steps = args->steps;
     req.rate = args->rate;
@@ -164,8 +168,9 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
       rows = exportTrajectory(evaluator, e, model, req);
     }
     const ExportMetadata meta = exportMetadata(gait, e, req);
-    writeFileAtomically(args->out, args->format == "csv" ? exportCsv(meta, rows)
-                                                         : exportJson(gait, model, e, meta, rows));
+    writeNewFile(staged, args->format == "csv" ? exportCsv(meta, rows)
+                                               : exportJson(gait, model, e, meta, rows));
+    output.commit();
     const auto events = std::count_if(rows.begin(), rows.end(), [](const ExportRow& r) {
       return r.event != ExportEvent::None;
     });

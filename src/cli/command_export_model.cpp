@@ -7,7 +7,7 @@
 #include "data_files.hpp"
 #include "commands.hpp"
 #include "gaitopt/export/robot_export.hpp"
-#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/robot_file.hpp"
 
 namespace gaitopt::cli {
@@ -34,19 +34,22 @@ void registerExportModelCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", args->out, "Output file")->required();
   cmd->add_option("--foot-radius", args->options.foot_radius, "Foot sphere radius [m]")
       ->capture_default_str()
-      ->check(CLI::Range(1e-4, 0.1));
+      ->check(numberWithin(1e-4, 0.1, false, "m"));
   cmd->add_option("--ground-friction", args->options.ground_friction,
                   "MJCF sliding friction of feet on the floor")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 10.0));
+      ->check(numberWithin(0.0, 10.0));
   cmd->add_option("--timestep", args->options.timestep, "MJCF simulation time step [s]")
       ->capture_default_str()
-      ->check(CLI::Range(1e-6, 0.01));
+      ->check(numberWithin(1e-6, 0.01, false, "s"));
   cmd->callback([args, &exit_code]() {
-    const RobotParams robot = loadRobot(robotOrDefault(args->robot, "export-model"));
-    requireFileOutput(args->out);
-    writeFileAtomically(args->out, args->format == "mjcf" ? robotMjcf(robot, args->options)
-                                                          : robotUrdf(robot, args->options));
+    const std::string robot_path = robotOrDefault(args->robot, "export-model");
+    const RobotParams robot = loadRobot(robot_path);
+    OutputTransaction output({{"--robot", robot_path}});
+    writeNewFile(output.file("--out", args->out), args->format == "mjcf"
+                                                      ? robotMjcf(robot, args->options)
+                                                      : robotUrdf(robot, args->options));
+    output.commit();
     std::cout << "export-model: " << robot.name << " as " << args->format << " -> " << args->out
               << "\n";
     exit_code = 0;

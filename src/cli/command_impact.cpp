@@ -27,7 +27,6 @@ int runImpact(const ImpactArgs& args) {
   const Model model = buildModel(loadRobot(robotOrDefault(args.robot, "impact")));
   const Vec5 q_given = toVec5(parseNumberList("--q", args.q, 5));
   const Vec5 qd = toVec5(parseNumberList("--qd", args.qd, 5));
-  requireFriction("--mu", args.mu);
   const Vec5 q = foot2OnGround(model, q_given, "impact");
   const double v2z = foot2VerticalVelocity(model, q, qd);
   if (!(v2z < 0.0))
@@ -67,7 +66,9 @@ void registerImpactCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--model", args->model, "Impact model: algebraic | differential")
       ->capture_default_str()
       ->check(CLI::IsMember({"algebraic", "differential"}));
-  cmd->add_option("--mu", args->mu, "Coulomb friction coefficient (>= 0)")->required();
+  cmd->add_option("--mu", args->mu, "Coulomb friction coefficient (>= 0)")
+      ->required()
+      ->check(numberWithin(0.0, 100.0));
   cmd->callback([args, &exit_code]() {
     exit_code = exitCodeOf("impact", [&args]() { return runImpact(*args); });
   });

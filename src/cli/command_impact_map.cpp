@@ -10,7 +10,7 @@
 #include "data_files.hpp"
 #include "commands.hpp"
 #include "gaitopt/impact/impact_map.hpp"
-#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/robot_file.hpp"
 #include "impact_input.hpp"
@@ -27,6 +27,9 @@ struct ImpactMapArgs {
 };
 
 constexpr double kDeg = M_PI / 180.0;
+// Grid points (μ samples × θ samples) of one map: 10^6 keep a run within a few seconds (the
+// differential model about ten times more) and a quarter of a GB (docs/reliability.md).
+constexpr long long kMaxMapPoints = 1000000;
 
 std::string labels(const std::vector<ImpactBehaviour>& behaviours) {
   if (behaviours.empty()) return "none";
@@ -64,13 +67,19 @@ std::string intervalsCsv(const Model& model, const Vec5& q, const ImpactMapReque
 }
 
 int runImpactMap(const ImpactMapArgs& args) {
-  const Model model = buildModel(loadRobot(robotOrDefault(args.robot, "impact-map")));
+  const std::string robot = robotOrDefault(args.robot, "impact-map");
+  const Model model = buildModel(loadRobot(robot));
   const std::vector<double> qv = parseNumberList("--q", args.q, 5);
   const SampleRange mu = parseSampleRange("--mu-range", args.mu_range);
   const SampleRange theta = parseSampleRange("--theta-range", args.theta_range);
   requireFriction("--mu-range", std::min(mu.a, mu.b));
+  if (static_cast<long long>(mu.n) * theta.n > kMaxMapPoints)
+    throw BadImpactInput("--mu-range, --theta-range: " + std::to_string(mu.n) + " x " +
+                         std::to_string(theta.n) + " points, more than the limit of " +
+                         std::to_string(kMaxMapPoints));
   const Vec5 q = foot2OnGround(model, Vec5(Eigen::Map<const Vec5>(qv.data())), "impact-map");
-  requireDirectoryOrAbsent(args.out);
+  OutputTransaction output({{"--robot", robot}});
+  const std::string dir = output.directory("--out", args.out, {"map.csv", "intervals.csv"});
   ImpactMapRequest req;
   req.model = parseImpactModel(args.model);
   req.mu_min = mu.a;
@@ -80,10 +89,10 @@ int runImpactMap(const ImpactMapArgs& args) {
   req.theta_max = theta.b * kDeg;
   req.theta_count = theta.n;
   const std::string map = mapCsv(impactMap(model, q, req));
-  std::filesystem::create_directories(args.out);
-  writeFileAtomically(args.out + "/map.csv", map);
+  writeNewFile(dir + "/map.csv", map);
   if (req.model == ImpactModelKind::Algebraic)
-    writeFileAtomically(args.out + "/intervals.csv", intervalsCsv(model, q, req));
+    writeNewFile(dir + "/intervals.csv", intervalsCsv(model, q, req));
+  output.commit();
   return 0;
 }
 

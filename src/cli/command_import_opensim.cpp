@@ -7,7 +7,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/opensim_analysis_file.hpp"
 #include "gaitopt/io/opensim_table.hpp"
 #include "gaitopt/io/opensim_trial_file.hpp"
@@ -70,13 +70,14 @@ void registerImportOpenSimCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--trc", args->files.trc, "Markers (.trc): trunk line and belt speed");
   cmd->add_option("--id", args->id, "OpenSim inverse dynamics (.sto): torques compared in --report");
   cmd->add_option("--belt-speed", args->belt_speed,
-                  "Treadmill belt speed [m/s] (default: estimated from the stance feet)");
+                  "Treadmill belt speed [m/s] (default: estimated from the stance feet)")
+      ->check(numberWithin(0.0, 10.0, true, "m/s"));
   cmd->add_option("--robot", args->robot, "Five-link lumped robot file (lengths, masses)")
       ->capture_default_str();
   cmd->add_option("--cutoff", args->cutoff_hz,
                   "Kinematics smoothing spline: frequency of gain 1/2 [Hz]")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(numberWithin(0.0, 1000.0, true, "Hz"));
   cmd->add_option("--trunk", args->trunk,
                   "Trunk line: 'markers' (pelvis to shoulders, needs --trc) or 'model' (hip to "
                   "the IK model's pelvis + torso CoM)")
@@ -88,6 +89,11 @@ void registerImportOpenSimCommand(CLI::App& app, int& exit_code) {
                   "residual, rocker-foot radius) as JSON");
   cmd->callback([args, &exit_code]() {
     const RobotParams robot = loadRobot(args->robot);
+    OutputTransaction output({{"--ik", args->files.ik}, {"--grf", args->files.grf},
+                              {"--trc", args->files.trc}, {"--id", args->id},
+                              {"--robot", args->robot}});
+    const std::string csv = output.file("--out", args->out);
+    const std::string report = args->report.empty() ? "" : output.file("--report", args->report);
     OpenSimImportOptions options;
     options.belt_speed = args->belt_speed;
     options.cutoff_hz = args->cutoff_hz;
@@ -100,11 +106,12 @@ void registerImportOpenSimCommand(CLI::App& app, int& exit_code) {
       analysis = withDataErrorsAsConfigErrors(
           [&] { return analyseImportedTrial(trial, buildModel(robot), id ? &*id : nullptr); });
     printSummary(trial);
-    writeFileAtomically(args->out, importedTrialCsv(trial));
+    writeNewFile(csv, importedTrialCsv(trial));
     if (analysis) {
       printAnalysis(*analysis);
-      writeFileAtomically(args->report, opensimAnalysisJson(*analysis));
+      writeNewFile(report, opensimAnalysisJson(*analysis));
     }
+    output.commit();
     exit_code = 0;
   });
 }

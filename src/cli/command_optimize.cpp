@@ -13,7 +13,7 @@
 #include "commands.hpp"
 #include "gaitopt/gait/constraint_summary.hpp"
 #include "gaitopt/gait/evaluator.hpp"
-#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/optimize_config.hpp"
 #include "gaitopt/io/optimize_output.hpp"
 #include "gaitopt/opt/global_search.hpp"
@@ -88,19 +88,19 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
       cmd->add_option("--random-starts", args->random_starts,
                       "Optimise from K random starts in the documented box around the "
                       "configured initial guess, and keep the best")
-          ->check(CLI::Range(1, 100000));
+          ->check(integerWithin(1, 100000));
   CLI::Option* global =
       cmd->add_option("--global", args->global,
                       "Multi-start global search: K random starts (the same box), starts inside "
                       "the basin of an optimum already found skipped, the local optima "
                       "clustered (0.1 %), the best one polished")
-          ->check(CLI::Range(1, 100000))
+          ->check(integerWithin(1, 100000))
           ->excludes(starts);
   CLI::Option* seed =
       cmd->add_option("--seed", args->seed,
                       "Seed of the random starts of --random-starts or --global "
                       "(std::mt19937_64), 0 to 2^53-1; default 1")
-          ->check(CLI::Range(std::uint64_t{0}, kMaxSeed));
+          ->check(integerWithin(0, kMaxSeed));
   cmd->add_flag("--quiet", args->quiet, "No progress lines");
   cmd->add_flag("--verbose", args->verbose,
                 "Also the solver's own lines (scaled objective and violation)");
@@ -112,16 +112,17 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
     if (seed->count() > 0 && starts->count() == 0 && global->count() == 0)
       throw CLI::RequiresError("--seed", "--random-starts or --global");
     // Everything that can fail on bad input happens before the output directory is touched.
-    OptimizeConfig config = loadOptimizeConfigWithOverrides(args->config, overridesOf(args->overrides, "speed"));
-    StagedDirectory staged(args->out, ourOutputs(&config.solver));  // --out checked before work
-    placeIpoptOutputFile(config.solver, staged.path());
+    OptimizeConfig config =
+        loadOptimizeConfigWithOverrides(args->config, overridesOf(args->overrides, "speed"));
+    OutputTransaction output({{"--config", args->config}});
+    const std::string dir = output.directory("--out", args->out, ourOutputs(&config.solver));
+    placeIpoptOutputFile(config.solver, dir);
 
     const GaitEvaluator evaluator(config.robot, config.options, config.model_options);
     const GaitParameters initial = configuredInitialGuess(config, evaluator.model());
     std::ostream* log = args->quiet ? nullptr : &std::cout;
     const Criterion criterion = config.criterion;
-    // Progress in user units from the solver's iteration hook; the solver's own (scaled) lines
-    // only with --verbose.
+    // Progress in user units from the solver's hook; its own (scaled) lines with --verbose.
     OptimizeProgress progress_lines(
         evaluator, criterion, args->progress == "lines" ? ProgressMode::Lines : ProgressMode::Auto,
         std::cout);
@@ -167,8 +168,8 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
             writeRandomStartsJson(w, runs, args->seed, runs[best].start, criterion);
           if (args->global > 0) writeGlobalSearchJson(w, global_result, runs, args->seed, criterion);
         });
-    writeOptimizationOutputs(staged.path(), outputs);
-    staged.commit();
+    writeOptimizationOutputs(dir, outputs);
+    output.commit();
 
     if (args->random_starts > 0) printStartsTable(std::cout, runs, criterion);
     if (args->global > 0) printClusters(std::cout, global_result, criterion);

@@ -14,6 +14,7 @@
 
 #include "commands.hpp"
 #include "data_files.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 
 namespace gaitopt::cli {
 namespace {
@@ -50,10 +51,20 @@ std::string joined(const std::vector<std::string>& names) {
   return s;
 }
 
-// Runs the script without a shell (no quoting of user paths); its exit code is ours.
-int runScript(const fs::path& script, const PlotArgs& args) {
-  std::vector<std::string> argv{kPython, script.string(), args.run_dir};
-  if (!args.out.empty()) argv.insert(argv.end(), {"--out", args.out});
+// The figure's file: --out, else RUN_DIR/KIND.png (an input file: its name with .png, .gif for
+// animate).
+std::string figurePath(const PlotArgs& args) {
+  if (!args.out.empty()) return args.out;
+  std::error_code ec;
+  if (fs::is_directory(args.run_dir, ec)) return (fs::path(args.run_dir) / (args.kind + ".png")).string();
+  return fs::path(args.run_dir).replace_extension(args.kind == "animate" ? ".gif" : ".png").string();
+}
+
+// Runs the script without a shell (no quoting of user paths), the figure going to `staged`
+// (GAITOPT_PLOT_OUT names its final place in the script's messages); its exit code is ours.
+int runScript(const fs::path& script, const PlotArgs& args, const std::string& staged,
+              const std::string& shown) {
+  std::vector<std::string> argv{kPython, script.string(), args.run_dir, "--out", staged};
   std::vector<char*> cargv;
   for (std::string& a : argv) cargv.push_back(a.data());
   cargv.push_back(nullptr);
@@ -61,6 +72,7 @@ int runScript(const fs::path& script, const PlotArgs& args) {
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("plot: cannot start " + std::string(kPython));
   if (pid == 0) {
+    setenv("GAITOPT_PLOT_OUT", shown.c_str(), 1);
     execv(kPython, cargv.data());
     std::cerr << "gaitopt plot: error: cannot run " << kPython
               << " (Debian: apt-get install python3-numpy python3-matplotlib)\n";
@@ -105,7 +117,11 @@ void registerPlotCommand(CLI::App& app, int& exit_code) {
     if (std::find(known.begin(), known.end(), args->kind) == known.end())
       throw CLI::ValidationError("KIND", "unknown figure '" + args->kind + "'; one of: " +
                                              joined(known) + " (scripts in " + dir.string() + ")");
-    exit_code = runScript(dir / (args->kind + ".py"), *args);
+    const std::string figure = figurePath(*args);
+    OutputTransaction output({{"RUN_DIR", args->run_dir}});
+    const std::string staged = output.file("--out", figure);
+    exit_code = runScript(dir / (args->kind + ".py"), *args, staged, figure);
+    if (exit_code == 0) output.commit();
   });
 }
 

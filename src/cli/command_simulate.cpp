@@ -4,12 +4,15 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "gaitopt/export/controller_export.hpp"
-#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/config_error.hpp"
+#include "gaitopt/io/csv_table.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/robot_file.hpp"
 #include "gaitopt/io/simulation_report.hpp"
 #include "gaitopt/sim/cycle_convergence.hpp"
@@ -34,14 +37,12 @@ void applyPerturbation(const std::string& text, WalkRequest& req) {
   const std::size_t eq = text.find('=');
   static const std::map<std::string, int> coordinate{
       {"alpha", 0}, {"delta1", 1}, {"delta2", 2}, {"delta3", 3}, {"delta4", 4}};
-  double v = 0.0;
-  try {
-    std::size_t used = 0;
-    v = std::stod(text.substr(eq == std::string::npos ? text.size() : eq + 1), &used);
-    if (eq + 1 + used != text.size()) throw std::invalid_argument("trailing");
-  } catch (const std::exception&) {
-    throw CLI::ValidationError("--perturb", "expected KIND=VALUE, got '" + text + "'");
-  }
+  const std::optional<double> parsed =
+      eq == std::string::npos ? std::nullopt : parseDecimal(text.substr(eq + 1));
+  if (!parsed)
+    throw CLI::ValidationError("--perturb", "expected KIND=VALUE (a decimal VALUE), got '" +
+                                                printable(text) + "'");
+  const double v = *parsed;
   const std::string kind = text.substr(0, eq);
   if (kind == "alphad") {
     req.dalphad0 += v;
@@ -80,7 +81,7 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", args->out, "Output directory (created if missing)")->required();
   cmd->add_option("--steps", args->steps, "Number of steps")
       ->capture_default_str()
-      ->check(CLI::Range(1, 10000));
+      ->check(integerWithin(1, 10000));
   cmd->add_option("--perturb", args->perturb,
                   "KIND=VALUE added at the first SS start: alphad [rad/s] (on the virtual "
                   "constraints) or alpha, delta1..delta4 [rad]; slope [rad]: the ground ahead "
@@ -90,14 +91,14 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--bandwidth", args->bandwidth, "Output bandwidth omega [rad/s]")
       ->capture_default_str()
-      ->check(CLI::Range(0.1, 1000.0));
+      ->check(numberWithin(0.1, 1000.0, false, "rad/s"));
   cmd->add_option("--gain-scale", args->gain_scale,
                   "Scales both output gains (the walker's gain_scale, docs/walking_controller.md)")
       ->capture_default_str()
-      ->check(CLI::Range(0.01, 100.0));
+      ->check(numberWithin(0.01, 100.0));
   cmd->add_option("--sample-rate", args->sample_rate, "trajectory rows [Hz]")
       ->capture_default_str()
-      ->check(CLI::Range(1.0, 1e5));
+      ->check(numberWithin(1.0, 1e5, false, "Hz"));
   cmd->add_option("--impact", args->impact,
                   "Touchdown model: auto (double_support for a zero-velocity landing with DS, "
                   "none without DS, algebraic for an impact landing), none (impulse-free only), "
@@ -108,7 +109,7 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--ground-mu", args->ground_mu,
                   "Friction coefficient of the plant's ground (slip checks, impacts); default: "
                   "the gait's friction_coefficient")
-      ->check(CLI::Range(0.0, 100.0));
+      ->check(numberWithin(0.0, 100.0));
   cmd->add_flag("--no-torque-limits", args->no_torque_limits,
                 "Do not project the inputs on the torque envelope and contact constraints");
   cmd->callback([args, &exit_code]() {
@@ -126,7 +127,9 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
     const Model controller = buildModel(gait.robot, gait.model_options);
     const Model plant =
         args->plant.empty() ? controller : buildModel(loadRobot(args->plant), gait.model_options);
-    requireDirectoryOrAbsent(args->out);
+    OutputTransaction output({{"--gait", args->gait}, {"--plant", args->plant}});
+    const fs::path dir = output.directory(
+        "--out", args->out, {"summary.json", "steps.csv", "trajectory.csv", "tracking.csv"});
     const GaitEvaluator evaluator(gait.robot, gait.options, gait.model_options);
     const GaitEvaluation<double> e = evaluator.evaluate(gait.parameters);
     if (!e.defined() || !e.motion_computed) {
@@ -134,6 +137,8 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
       exit_code = kExitUndefined;
       return;
     }
+    requireSampleRows("--steps, --sample-rate", args->steps, e.motion.T_SS + e.motion.T_DS,
+                      args->sample_rate);
     const WalkResult r = simulateWalk(
         e, controller, plant, req,
         gaitTouchdown(gait.options, args->impact, req.plant_friction_coefficient));
@@ -142,14 +147,13 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
     meta_req.rate = args->sample_rate;
     const SimulationRun run{args->gait, args->plant, resolvedImpactModel(gait.options, args->impact),
                             req, e.motion.alphadot_iSS};
-    const fs::path dir(args->out);
-    fs::create_directories(dir);
-    writeFileAtomically((dir / "summary.json").string(), simulationSummaryJson(r, run));
-    writeFileAtomically((dir / "steps.csv").string(), walkStepsCsv(r));
-    writeFileAtomically((dir / "trajectory.csv").string(),
-                        exportCsv(exportMetadata(gait, e, meta_req), exportRows(plant, r)));
-    writeFileAtomically((dir / "tracking.csv").string(),
-                        walkTrackingCsv(r, gait.options.friction_coefficient));
+    writeNewFile((dir / "summary.json").string(), simulationSummaryJson(r, run));
+    writeNewFile((dir / "steps.csv").string(), walkStepsCsv(r));
+    writeNewFile((dir / "trajectory.csv").string(),
+                 exportCsv(exportMetadata(gait, e, meta_req), exportRows(plant, r)));
+    writeNewFile((dir / "tracking.csv").string(),
+                 walkTrackingCsv(r, gait.options.friction_coefficient));
+    output.commit();
     std::cout << "simulate: " << outcomeName(r.outcome)
               << (r.message.empty() ? "" : " (" + r.message + ")") << ", "
               << r.steps.size() << " steps, converged "

@@ -7,6 +7,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "gaitopt/io/gait_file.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/stability_report.hpp"
 
 namespace gaitopt::cli {
@@ -39,31 +40,33 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
                   "Finite-difference step on every state component (--jacobian fd, power "
                   "iteration box)")
       ->capture_default_str()
-      ->check(CLI::Range(1e-9, 1e-1));
+      ->check(numberWithin(1e-9, 1e-1));
   cmd->add_option("--bandwidth", a->request.bandwidth, "Output bandwidth omega [rad/s]")
       ->capture_default_str()
-      ->check(CLI::Range(0.1, 1000.0));
+      ->check(numberWithin(0.1, 1000.0, false, "rad/s"));
   cmd->add_option("--map-range", a->request.map_range, "Relative alphad range of the 1-D map (+-)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 0.95));
+      ->check(numberWithin(0.0, 0.95));
   cmd->add_option("--margin-steps", a->request.margin_steps,
                   "Steps walked after a push, on a slope or with a payload (margins)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 100));
+      ->check(integerWithin(1, 100));
   cmd->add_option("--map-points", a->request.map_points, "Points of the 1-D map")
       ->capture_default_str()
-      ->check(CLI::Range(2, 10001));
+      ->check(integerWithin(2, 10001));
   addDsControlOption(cmd, a->ds_control);
   cmd->add_option("--ds-range", a->request.ds_range,
                   "Relative alphad_fDS range of the DS convergence-zone study (Fig. 4.5, +-)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 0.95));
+      ->check(numberWithin(0.0, 0.95));
   cmd->add_option("--ds-points", a->request.ds_points, "Points of the DS convergence-zone study")
       ->capture_default_str()
-      ->check(CLI::Range(2, 10001));
+      ->check(integerWithin(2, 10001));
   cmd->callback([a, &exit_code]() {
     const GaitFile gait = loadGaitFile(a->gait);
-    requireDirectoryOrAbsent(a->out);
+    OutputTransaction output({{"--gait", a->gait}});
+    const std::string dir = output.directory(
+        "--out", a->out, {"stability.json", "jacobian.csv", "zero_dynamics_map.csv", "ds_bounds.csv"});
     const GaitEvaluator ev(gait.robot, gait.options, gait.model_options);
     const GaitEvaluation<double> e = ev.evaluate(gait.parameters);
     if (!e.defined() || !e.motion_computed) {
@@ -77,7 +80,8 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
     req.ds_control = dsAlphaControlOf(a->ds_control);
     const StabilityStudy s =
         studyStability(e, gait.robot, gait.options, gait.model_options, req);
-    writeStabilityReport(a->out, s, req, a->gait);
+    writeStabilityReport(dir, s, req, a->gait);
+    output.commit();
     std::cout << "stability: dominant |eigenvalue| " << shortNumber(s.dominant_modulus)
               << ", power iteration " << shortNumber(s.power_estimate) << ", fixed-point residual "
               << shortNumber(s.linearisation.fixed_point_residual)

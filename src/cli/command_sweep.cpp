@@ -15,7 +15,7 @@
 #include "override_options.hpp"
 #include "commands.hpp"
 #include "gaitopt/gait/evaluator.hpp"
-#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/sweep_file.hpp"
 
@@ -56,7 +56,7 @@ void registerSweep(CLI::App& app, int& exit_code) {
   cmd->add_option("--jobs", args->jobs,
                   "Independent continuation chains on contiguous chunks of the speeds, one "
                   "thread each (default 1; ipopt: run one after the other)")
-      ->check(CLI::Range(1, 1024));
+      ->check(integerWithin(1, 1024));
   cmd->add_option("--shard", args->shard,
                   "i/n: only the i-th (0-based) of n contiguous chunks of the speeds")
       ->type_name("I/N");
@@ -85,8 +85,9 @@ void registerSweep(CLI::App& app, int& exit_code) {
     }
     // The whole sweep is written beside --out and put in place at the end (checked here,
     // before any work): an interrupted re-run leaves the previous sweep complete.
-    StagedDirectory staged(args->out, ourOutputs(&config.solver));
-    placeIpoptOutputFile(config.solver, staged.path());
+    OutputTransaction output({{"--config", args->config}});
+    const fs::path stage = output.directory("--out", args->out, ourOutputs(&config.solver));
+    placeIpoptOutputFile(config.solver, stage.string());
     if (config.speed)
       std::cerr << "gaitopt: sweep: note: the config's speed ("
                 << shortNumber(*config.speed, "%g")
@@ -101,7 +102,7 @@ void registerSweep(CLI::App& app, int& exit_code) {
         optimizationRequest(free_config, configuredInitialGuess(free_config, evaluator.model()));
     const Criterion criterion = config.criterion;
     const int decimals = sweepFolderDecimals(speeds);  // of the whole list: shards agree
-    const fs::path out(args->out), stage(staged.path());
+    const fs::path out(args->out);
 
     // "v=<speed> m/s  status <status>  <criterion> <value> <unit>  worst <constraint> +<value>
     // <unit>  elapsed <time> s, remaining ~<time> s"
@@ -128,8 +129,8 @@ void registerSweep(CLI::App& app, int& exit_code) {
                   << std::flush;
     };
     const std::vector<SweepPoint> points = sweepSpeeds(evaluator, base, speeds, settings, progress);
-    writeFileAtomically((stage / "sweep.csv").string(), sweepCsv(evaluator, points));
-    staged.commit();
+    writeNewFile((stage / "sweep.csv").string(), sweepCsv(evaluator, points));
+    output.commit();
 
     std::vector<std::string> failed;
     for (const SweepPoint& p : points)
@@ -168,12 +169,18 @@ void registerSweepMerge(CLI::App& app, int& exit_code) {
     } catch (const std::invalid_argument& e) {
       throw CLI::ValidationError("SHARD_DIR", e.what());
     }
-    requireDirectoryOrAbsent(args->out);
     const fs::path out(args->out);
+    std::vector<RunInput> inputs;
+    for (const std::string& shard : args->shards)
+      inputs.push_back({"SHARD_DIR", (fs::path(shard) / "sweep.csv").string()});
+    OutputTransaction output(inputs);
     std::error_code ec;
+    if (fs::exists(out, ec) && !fs::is_directory(out, ec))
+      throw OutputError("--out '" + args->out + "' exists and is not a directory");
     fs::create_directories(out, ec);
     if (ec) throw OutputError("--out '" + args->out + "' cannot be created: " + ec.message());
-    writeFileAtomically((out / "sweep.csv").string(), merged);
+    writeNewFile(output.file("--out", (out / "sweep.csv").string()), merged);
+    output.commit();
     const SweepCsvCount n = countSweepCsvRows(merged);
     std::cout << "sweep-merge: " << n.rows << " speeds (" << n.optimal << " optimal) from "
               << args->shards.size() << " shard(s) -> " << (out / "sweep.csv").string() << "\n";

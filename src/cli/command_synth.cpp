@@ -7,7 +7,9 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "gaitopt/ident/synth.hpp"
-#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/output_transaction.hpp"
+#include "gaitopt/io/config_error.hpp"
+#include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/io/measured_data.hpp"
 #include "gaitopt/io/robot_file.hpp"
@@ -33,27 +35,37 @@ void registerSynthCommand(CLI::App& app, int& exit_code) {
       "walk the gait.");
   cmd->add_option("--robot", args->robot, "Nominal robot YAML file")->required();
   cmd->add_option("--gait", args->gait, "Gait YAML file (its parameters and options)")->required();
-  cmd->add_option("--steps", args->options.steps, "Number of steps (>= 3)")
+  cmd->add_option("--steps", args->options.steps, "Number of steps, 3 to 300 (a file diagnose reads: 10^5 samples)")
       ->required()
-      ->check(CLI::Range(3, 100000));
+      ->check(integerWithin(3, 300));
   cmd->add_option("--effect", args->effects,
                   "Hidden effect NAME[@JOINT]=VALUE (repeatable), e.g. coulomb@knee_right=3.2");
   cmd->add_option("--noise", args->noise, "default (2^14 counts/rev, 0.3 N·m, 2 N) or none")
       ->check(CLI::IsMember({"default", "none"}));
-  cmd->add_option("--seed", args->options.seed, "Random seed (gait variation and noise)");
+  cmd->add_option("--seed", args->options.seed,
+                  "Random seed (gait variation and noise), 0 to 2^53-1")
+      ->check(integerWithin(0, (std::int64_t{1} << 53) - 1));
   cmd->add_option("--out", args->out, "Output CSV file")->required();
   cmd->callback([args, &exit_code]() {
     std::vector<Effect> effects;
     for (const std::string& spec : args->effects) {
+      // The value in the one number syntax of the command line (the parser takes any stod).
+      const std::size_t eq = spec.find('=');
+      if (eq != std::string::npos && !parseDecimal(spec.substr(eq + 1)))
+        throw CLI::ValidationError("--effect", "'" + printable(spec) + "': " +
+                                                   decimalProblem(spec.substr(eq + 1)));
       try {
         effects.push_back(parseEffectSpec(spec));
       } catch (const std::invalid_argument& e) {
-        throw CLI::ValidationError("--effect", "'" + spec + "': " + e.what());
+        throw CLI::ValidationError("--effect", "'" + printable(spec) + "': " + e.what());
       }
     }
     const RobotParams robot = loadRobot(args->robot);
     const GaitFile gait = loadGaitFile(args->gait);
     args->options.noise = args->noise == "default";
+    OutputTransaction output({{"--robot", args->robot}, {"--gait", args->gait}});
+    const std::string csv = output.file("--out", args->out);
+    const std::string truth = output.file("--out's truth file", args->out + ".truth.json");
     MeasuredData data;
     try {
       data = synthesize(robot, gait.parameters, gait.options, gait.model_options, effects,
@@ -63,9 +75,9 @@ void registerSynthCommand(CLI::App& app, int& exit_code) {
       exit_code = kExitUndefined;
       return;
     }
-    writeFileAtomically(args->out, measuredCsv(data));
-    writeFileAtomically(args->out + ".truth.json",
-                        synthTruthJson(args->robot, args->gait, effects, args->options));
+    writeNewFile(csv, measuredCsv(data));
+    writeNewFile(truth, synthTruthJson(args->robot, args->gait, effects, args->options));
+    output.commit();
     std::cout << "synth: " << args->options.steps << " steps, " << data.size() << " samples, "
               << effects.size() << " effect(s) -> " << args->out << "\n";
     exit_code = 0;

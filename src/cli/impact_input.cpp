@@ -7,13 +7,14 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "gaitopt/io/csv_table.hpp"
+#include "gaitopt/io/tab_text.hpp"
 #include "gaitopt/model/foot_on_ground.hpp"
 
 namespace gaitopt::cli {
 namespace {
 
 bool parseDouble(const std::string& s, double& v) {
-  const std::optional<double> x = parseFiniteNumber(s);
+  const std::optional<double> x = parseDecimal(trimBlanks(s));
   if (x) v = *x;
   return x.has_value();
 }
@@ -28,7 +29,7 @@ std::vector<double> parseNumberList(const std::string& option, const std::string
   for (std::size_t i = 0; ok && i < parts.size(); ++i) ok = parseDouble(parts[i], out[i]);
   if (!ok)
     throw BadImpactInput(option + ": expected " + std::to_string(count) +
-                         " comma-separated finite numbers, got '" + text + "'");
+                         " comma-separated finite numbers, got '" + printable(text) + "'");
   return out;
 }
 
@@ -37,10 +38,10 @@ SampleRange parseSampleRange(const std::string& option, const std::string& text)
   SampleRange r{0.0, 0.0, 0};
   double n = 0.0;
   const bool ok = parts.size() == 3 && parseDouble(parts[0], r.a) && parseDouble(parts[1], r.b) &&
-                  parseDouble(parts[2], n) && n >= 1.0 && n <= 100000.0 && n == std::floor(n);
+                  parseDouble(parts[2], n) && n >= 1.0 && n <= 10000.0 && n == std::floor(n);
   if (!ok)
-    throw BadImpactInput(option + ": expected a:b:n (finite a, b; integer 1 <= n <= 100000), got '" +
-                         text + "'");
+    throw BadImpactInput(option + ": expected a:b:n (finite a, b; integer 1 <= n <= 10000), got '" +
+                         printable(text) + "'");
   r.n = static_cast<int>(n);
   return r;
 }

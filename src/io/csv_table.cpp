@@ -23,22 +23,6 @@ std::vector<std::string> splitFields(const std::string& line, char separator) {
   return fields;
 }
 
-std::optional<double> parseFiniteNumber(const std::string& field) {
-  try {
-    std::size_t used = 0;
-    const double v = std::stod(field, &used);
-    if (used == field.size() && std::isfinite(v)) return v;
-  } catch (const std::exception&) {
-  }
-  return std::nullopt;
-}
-
-double parseCsvNumber(const std::string& field, const std::string& file,
-                      const std::string& column, int line) {
-  if (const std::optional<double> v = parseFiniteNumber(field)) return *v;
-  throw ConfigError(file, column, line, "not a finite number: '" + field + "'");
-}
-
 std::optional<double> parseDecimal(const std::string& field) {
   if (field.empty() || field.size() > 64 ||
       field.find_first_not_of("0123456789+-.eE") != std::string::npos)
@@ -47,6 +31,24 @@ std::optional<double> parseDecimal(const std::string& field) {
   const double v = std::strtod(field.c_str(), &end);
   if (end != field.c_str() + field.size() || !std::isfinite(v)) return std::nullopt;
   return v;
+}
+
+std::string decimalProblem(const std::string& field) {
+  if (parseDecimal(field)) return "";
+  if (field.empty()) return "empty value";
+  const std::string quoted = "'" + printable(field) + "'";
+  // strtod reads hex, blanks, inf and nan too: a finite value there is a refused spelling.
+  char* end = nullptr;
+  const double v = std::strtod(field.c_str(), &end);
+  if (end == field.c_str() + field.size() && std::isfinite(v))
+    return "not a decimal number: " + quoted + " (digits, sign, point and exponent only)";
+  return "not a finite number: " + quoted;
+}
+
+double parseCsvNumber(const std::string& field, const std::string& file,
+                      const std::string& column, int line) {
+  if (const std::optional<double> v = parseDecimal(field)) return *v;
+  throw ConfigError(file, column, line, decimalProblem(field));
 }
 
 std::optional<double> finiteOrAbsent(double v) {

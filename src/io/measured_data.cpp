@@ -1,5 +1,6 @@
 #include "gaitopt/io/measured_data.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -52,13 +53,8 @@ class RowReader {
       : ctx_(ctx), columns_(columns), cells_(cells), line_(line) {}
   const std::string& text(const std::string& c) const { return cells_[columns_.at(c)]; }
   double number(const std::string& c) const {
-    const std::string& s = text(c);
-    char* end = nullptr;
-    const double v = std::strtod(s.c_str(), &end);
-    if (s.empty() || end != s.c_str() + s.size())
-      throw ctx_.error(line_, c, "not a number: '" + s + "'");
-    if (!std::isfinite(v)) throw ctx_.error(line_, c, "not a finite number: '" + s + "'");
-    return v;
+    if (const std::optional<double> v = parseDecimal(text(c))) return *v;
+    throw ctx_.error(line_, c, decimalProblem(text(c)));
   }
   template <std::size_t N> Vec4 four(const std::array<const char*, N>& names) const {
     return Vec4(number(names[0]), number(names[1]), number(names[2]), number(names[3]));
@@ -94,7 +90,7 @@ std::map<std::string, int> readHeader(const CsvContext& ctx, const std::string& 
       const std::size_t n = group == kRequired.data() ? kRequired.size() : 4;
       for (std::size_t k = 0; k < n; ++k) known = known || names[i] == group[k];
     }
-    if (!known) throw ctx.error(1, names[i], "unknown column");
+    if (!known) throw ctx.error(1, printable(names[i]), "unknown column");
     if (!columns.emplace(names[i], static_cast<int>(i)).second)
       throw ctx.error(1, names[i], "duplicate column");
   }
@@ -109,18 +105,23 @@ void appendRow(const RowReader& row, MeasuredData& d) {
     throw row.error("t", "time must increase, got " + formatDouble(t) + " after " +
                              formatDouble(d.t.back()));
   d.t.push_back(t);
+  const std::array<const char*, 5> angles = {"alpha", "delta1", "delta2", "delta3", "delta4"};
+  for (const char* c : angles)
+    if (std::abs(row.number(c)) > kMaxMeasuredAngle)
+      throw row.error(c, "angle " + printable(row.text(c)) + " rad is beyond two turns (" +
+                             formatDouble(kMaxMeasuredAngle) + " rad): not radians of a joint");
   d.q.emplace_back(row.number("alpha"), row.number("delta1"), row.number("delta2"),
                    row.number("delta3"), row.number("delta4"));
   const std::string& ph = row.text("phase");
-  if (ph != "SS" && ph != "DS") throw row.error("phase", "must be SS or DS, got '" + ph + "'");
+  if (ph != "SS" && ph != "DS") throw row.error("phase", "must be SS or DS, got '" + printable(ph) + "'");
   d.phase.push_back(ph == "SS" ? Phase::SingleSupport : Phase::DoubleSupport);
   const std::string& st = row.text("stance");
   if (st != "left" && st != "right")
-    throw row.error("stance", "must be left or right, got '" + st + "'");
+    throw row.error("stance", "must be left or right, got '" + printable(st) + "'");
   d.stance.push_back(st == "left" ? Stance::Left : Stance::Right);
   const double step = row.number("step");
   if (step != std::floor(step) || std::abs(step) > 1e15)
-    throw row.error("step", "must be an integer, got '" + row.text("step") + "'");
+    throw row.error("step", "must be an integer, got '" + printable(row.text("step")) + "'");
   if (!d.step.empty() && step < d.step.back())
     throw row.error("step", "must not decrease, got " + row.text("step") + " after " +
                                 std::to_string(d.step.back()));
@@ -146,6 +147,26 @@ void checkSteps(const CsvContext& ctx, const MeasuredData& d, const std::vector<
                         std::to_string(kMinSteps));
 }
 
+// Time may jump only between steps: inside one, no gap over kMaxGapInSamples times the median
+// sample interval.
+void checkTimeGaps(const CsvContext& ctx, const MeasuredData& d, const std::vector<int>& lines) {
+  std::vector<double> gaps;
+  for (std::size_t i = 1; i < d.size(); ++i)
+    if (d.step[i] == d.step[i - 1]) gaps.push_back(d.t[i] - d.t[i - 1]);
+  if (gaps.empty()) return;
+  std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+  const double median = gaps[gaps.size() / 2];
+  for (std::size_t i = 1; i < d.size(); ++i) {
+    const double gap = d.t[i] - d.t[i - 1];
+    if (d.step[i] == d.step[i - 1] && gap > kMaxGapInSamples * median)
+      throw ctx.error(lines[i], "t",
+                      "gap of " + formatDouble(gap) + " s inside step " +
+                          std::to_string(d.step[i]) + ", over " + formatDouble(kMaxGapInSamples) +
+                          " times the median sample interval (" + formatDouble(median) +
+                          " s): time may jump only between steps");
+  }
+}
+
 }  // namespace
 
 MeasuredData readMeasuredCsv(const std::string& path) {
@@ -164,6 +185,9 @@ MeasuredData readMeasuredCsv(const std::string& path) {
     const std::string& line = text[i];
     const int number = static_cast<int>(i) + 1;
     if (line.empty()) continue;
+    if (lines.size() == kMaxMeasuredRows)
+      throw ctx.error(number, "", "more than " + std::to_string(kMaxMeasuredRows) +
+                                      " samples (limit)");
     const std::vector<std::string> cells = splitCsvLine(line);
     if (cells.size() != columns.size())
       throw ctx.error(number, "", "has " + std::to_string(cells.size()) + " cells, header has " +
@@ -172,7 +196,25 @@ MeasuredData readMeasuredCsv(const std::string& path) {
     lines.push_back(number);
   }
   checkSteps(ctx, d, lines);
+  checkTimeGaps(ctx, d, lines);
   return d;
+}
+
+void requirePlausibleTorques(const MeasuredData& data, const RobotParams& robot,
+                             const std::string& path) {
+  double envelope = 0.0;
+  for (double torque : robot.envelope.torque) envelope = std::max(envelope, torque);
+  const double limit = kMaxTorqueEnvelopeMultiple * envelope;
+  for (std::size_t k = 0; k < data.gamma.size(); ++k)
+    for (int j = 0; j < 4; ++j)
+      if (std::abs(data.gamma[k](j)) > limit)
+        throw ConfigError(path, "", 0,
+                          "column '" + std::string(kTorque[j]) + "', sample " +
+                              std::to_string(k + 1) + " (t = " + formatDouble(data.t[k]) +
+                              " s): " + formatDouble(data.gamma[k](j)) + " N m is beyond " +
+                              formatDouble(kMaxTorqueEnvelopeMultiple) +
+                              " times the robot's largest envelope torque (" +
+                              formatDouble(envelope) + " N m)");
 }
 
 std::string measuredCsv(const MeasuredData& d) {

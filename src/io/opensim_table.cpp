@@ -7,6 +7,7 @@
 #include <set>
 
 #include "gaitopt/io/config_error.hpp"
+#include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/tab_text.hpp"
 
 namespace gaitopt {
@@ -59,7 +60,7 @@ std::optional<long> headerCount(const Header& header, const std::string& key,
                                 const std::string& file) {
   const auto it = header.entries.find(key);
   if (it == header.entries.end()) return std::nullopt;
-  const double v = parseTableNumber(it->second.value, file, key, it->second.line);
+  const double v = parseCsvNumber(it->second.value, file, key, it->second.line);
   if (v < 0 || v > 1e12 || v != std::floor(v)) {
     throw ConfigError(file, key, it->second.line, "must be a non-negative integer");
   }
@@ -114,7 +115,7 @@ OpenSimTable readOpenSimTable(const std::string& path) {
                             std::to_string(table.columns.size()) + " (one per column)");
     }
     for (std::size_t c = 0; c < fields.size(); ++c) {
-      data.push_back(parseTableNumber(fields[c], path, table.columns[c], line));
+      data.push_back(parseCsvNumber(fields[c], path, table.columns[c], line));
     }
     const std::size_t at = data.size() - fields.size();
     if (n_rows > 0 && !(data[at] > data[at - fields.size()])) {

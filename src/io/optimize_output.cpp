@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/summary_file.hpp"
 #include "gaitopt/io/trajectory_file.hpp"
 #include "gaitopt/gait/trajectory.hpp"
@@ -79,10 +79,10 @@ void writeOptimizationOutputs(const std::string& dir, const OptimizationOutputs&
   if (!fs::create_directory(d, ec) && ec) {
     throw std::runtime_error("cannot create '" + dir + "': " + ec.message());
   }
-  writeFileAtomically((d / "summary.json").string(), outputs.summary_json);
-  writeFileAtomically((d / "gait.yaml").string(), outputs.gait_yaml);
+  writeNewFile((d / "summary.json").string(), outputs.summary_json);
+  writeNewFile((d / "gait.yaml").string(), outputs.gait_yaml);
   if (outputs.trajectory_csv) {
-    writeFileAtomically((d / "trajectory.csv").string(), *outputs.trajectory_csv);
+    writeNewFile((d / "trajectory.csv").string(), *outputs.trajectory_csv);
   }
 }
 

@@ -5,7 +5,7 @@
 #include <optional>
 #include <sstream>
 
-#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/json_writer.hpp"
 
@@ -159,12 +159,10 @@ std::string dsBoundsCsv(const DsZoneStudy& z) {
 void writeStabilityReport(const std::string& dir, const StabilityStudy& s,
                           const StabilityRequest& request, const std::string& gait) {
   const std::filesystem::path d(dir);
-  std::filesystem::create_directories(d);
-  writeFileAtomically((d / "stability.json").string(), stabilityJson(s, request, gait));
-  writeFileAtomically((d / "jacobian.csv").string(), jacobianCsv(s.linearisation.jacobian));
-  writeFileAtomically((d / "zero_dynamics_map.csv").string(), zeroDynamicsMapCsv(s.zero_dynamics));
-  if (s.has_double_support)
-    writeFileAtomically((d / "ds_bounds.csv").string(), dsBoundsCsv(s.ds_zone));
+  writeNewFile((d / "stability.json").string(), stabilityJson(s, request, gait));
+  writeNewFile((d / "jacobian.csv").string(), jacobianCsv(s.linearisation.jacobian));
+  writeNewFile((d / "zero_dynamics_map.csv").string(), zeroDynamicsMapCsv(s.zero_dynamics));
+  if (s.has_double_support) writeNewFile((d / "ds_bounds.csv").string(), dsBoundsCsv(s.ds_zone));
 }
 
 }  // namespace gaitopt

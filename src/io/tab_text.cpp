@@ -3,23 +3,17 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
+
+#include "gaitopt/io/input_file.hpp"
 
 namespace gaitopt {
 
 std::vector<std::string> readTableLines(const std::string& path) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw ConfigError(path, "", 0, "cannot open the file");
-  const std::streamoff size = in.tellg();
-  if (size < 0 || static_cast<std::size_t>(size) > kMaxTableFileBytes) {
-    throw ConfigError(path, "", 0,
-                      "file larger than the limit of " + std::to_string(kMaxTableFileBytes >> 20) +
-                          " MiB");
-  }
-  in.seekg(0);
-  std::string text(static_cast<std::size_t>(size), '\0');
-  if (!in.read(&text[0], size)) throw ConfigError(path, "", 0, "cannot read the file");
+  std::string text =
+      readInputFile(path, kMaxTableFileBytes, std::to_string(kMaxTableFileBytes >> 20) + " MiB");
+  // A UTF-8 byte order mark (as some spreadsheet programs write) is not part of the header.
+  if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
   std::vector<std::string> lines;
   std::istringstream stream(text);
   std::string line;
@@ -57,21 +51,6 @@ std::vector<std::string> splitTabFields(const std::string& line, const std::stri
   }
   if (fields.size() > 1 && fields.back().empty()) fields.pop_back();
   return fields;
-}
-
-double parseTableNumber(const std::string& field, const std::string& file,
-                        const std::string& column, int line_number) {
-  if (field.empty()) throw ConfigError(file, column, line_number, "empty value");
-  errno = 0;
-  char* end = nullptr;
-  const double value = std::strtod(field.c_str(), &end);
-  if (end != field.c_str() + field.size()) {
-    throw ConfigError(file, column, line_number, "not a number: '" + field + "'");
-  }
-  if (errno == ERANGE || !std::isfinite(value)) {
-    throw ConfigError(file, column, line_number, "not a finite number: '" + field + "'");
-  }
-  return value;
 }
 
 }  // namespace gaitopt

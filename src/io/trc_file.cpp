@@ -5,7 +5,9 @@
 #include <map>
 
 #include "gaitopt/io/config_error.hpp"
+#include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/tab_text.hpp"
+#include "gaitopt/io/yaml_reader.hpp"
 
 namespace gaitopt {
 
@@ -22,7 +24,7 @@ long positiveCount(const std::map<std::string, std::string>& values, const std::
                    const std::string& file) {
   const auto it = values.find(key);
   if (it == values.end()) throw ConfigError(file, key, 3, "missing from the header");
-  const double v = parseTableNumber(it->second, file, key, 3);
+  const double v = parseCsvNumber(it->second, file, key, 3);
   if (v < 1 || v > 1e12 || v != std::floor(v)) {
     throw ConfigError(file, key, 3, "must be a positive integer, got '" + it->second + "'");
   }
@@ -48,7 +50,7 @@ TrcHeader readHeader(const std::vector<std::string>& lines, const std::string& f
   TrcHeader h;
   const auto rate = header.find("DataRate");
   if (rate == header.end()) throw ConfigError(file, "DataRate", 3, "missing from the header");
-  h.rate = parseTableNumber(rate->second, file, "DataRate", 3);
+  h.rate = parseCsvNumber(rate->second, file, "DataRate", 3);
   if (!(h.rate > 0.0)) throw ConfigError(file, "DataRate", 3, "must be > 0");
   h.frames = positiveCount(header, "NumFrames", file);
   h.markers = positiveCount(header, "NumMarkers", file);
@@ -107,14 +109,20 @@ TrcData readTrcFile(const std::string& path) {
                             std::to_string(n_fields) + " (Frame#, Time, X/Y/Z of " +
                             std::to_string(trc.markers.size()) + " markers)");
     }
-    trc.time(frame) = parseTableNumber(fields[1], path, "Time", line);
+    trc.time(frame) = parseCsvNumber(fields[1], path, "Time", line);
     if (frame > 0 && !(trc.time(frame) > trc.time(frame - 1))) {
       throw ConfigError(path, "Time", line, "time does not increase strictly");
     }
     for (std::size_t c = 2; c < n_fields; ++c) {
       const std::string column = trc.markers[(c - 2) / 3] + "." + "XYZ"[(c - 2) % 3];
-      trc.positions(frame, static_cast<Eigen::Index>(c - 2)) =
-          h.unit * parseTableNumber(fields[c], path, column, line);
+      const double x = h.unit * parseCsvNumber(fields[c], path, column, line);
+      if (std::abs(x) > kMaxMarkerDistance)
+        throw ConfigError(path, column, line,
+                          printable(fields[c]) + " " + (h.unit == 1.0 ? "m" : "mm") +
+                              " lies beyond " + showNumber(kMaxMarkerDistance) +
+                              " m of the origin: check the header's Units (millimetres "
+                              "declared as m?)");
+      trc.positions(frame, static_cast<Eigen::Index>(c - 2)) = x;
     }
     ++frame;
     last_line = line;
@@ -124,6 +132,10 @@ TrcData readTrcFile(const std::string& path) {
                       "the file has " + std::to_string(frame) + " frames but its header says NumFrames=" +
                           std::to_string(h.frames) + " (truncated file)");
   }
+  if (frame > 0 && trc.positions.cwiseAbs().maxCoeff() < kMinMarkerSpread)
+    throw ConfigError(path, "Units", 3,
+                      "every marker lies within " + showNumber(kMinMarkerSpread) +
+                          " m of the origin: check the header's Units (metres declared as mm?)");
   return trc;
 }
 

@@ -3,6 +3,8 @@
 #include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/eventhandler.h>
 
+#include "gaitopt/io/input_file.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -58,13 +60,20 @@ std::string elementPath(const std::string& sequence_path, std::size_t index) {
   return sequence_path + "[" + std::to_string(index) + "]";
 }
 
-// Deepest chain of mappings/sequences inside `node` (a scalar is 0).
-int nesting(const YAML::Node& node, int limit) {
+// Deepest chain of mappings/sequences inside `node` (a scalar is 0). Every node visited is taken
+// from `budget`; at 0 the walk stops and returns `limit`. An alias stands for its anchor's
+// whole subtree, so a few hundred bytes of nested aliases can stand for 10^9 nodes (an "alias
+// bomb"): the budget bounds the walk, and every later reading of the document, to the nodes a
+// file of its size can hold without aliases.
+int nesting(const YAML::Node& node, int limit, std::size_t& budget) {
+  if (budget == 0) return limit;
+  --budget;
   if (!node.IsMap() && !node.IsSequence()) return 0;
   int deepest = 0;
   for (const auto& item : node) {
+    if (node.IsMap()) deepest = std::max(deepest, nesting(item.first, limit, budget));
     const YAML::Node child = node.IsMap() ? item.second : YAML::Node(item);
-    deepest = std::max(deepest, nesting(child, limit));
+    deepest = std::max(deepest, nesting(child, limit, budget));
     if (deepest >= limit) break;  // enough to refuse; alias loops stay bounded too
   }
   return deepest + 1;
@@ -157,19 +166,10 @@ struct YamlMap::State {
 };
 
 YAML::Node loadYamlFile(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw ConfigError(path, "", 0, "no such file (or not a regular file)");
-  }
-  const auto size = std::filesystem::file_size(path, ec);
-  if (!ec && size > YamlLimits::kMaxFileBytes) {
-    throw tooLarge(path);
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path, "", 0, "cannot open the file for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseYamlText(text.str(), path);
+  return parseYamlText(
+      readInputFile(path, YamlLimits::kMaxFileBytes,
+                    std::to_string(YamlLimits::kMaxFileBytes) + " bytes"),
+      path);
 }
 
 YAML::Node parseYamlText(const std::string& text, const std::string& file) {
@@ -190,7 +190,16 @@ YAML::Node parseYamlText(const std::string& text, const std::string& file) {
     throw ConfigError(file, "", second_document,
                       "a second YAML document ('---'): one document per file");
   }
-  if (nesting(document, YamlLimits::kMaxNesting + 1) > YamlLimits::kMaxNesting) {
+  // Without aliases a node takes at least one byte (a null one an indicator beside it).
+  std::size_t budget = 2 * text.size() + 16;
+  const int depth = nesting(document, YamlLimits::kMaxNesting + 1, budget);
+  if (budget == 0) {
+    throw ConfigError(file, "", 0, "more than " + std::to_string(2 * text.size() + 16) +
+                                       " nodes once aliases are expanded (limit: twice the "
+                                       "file's bytes); write the values out instead of '*' "
+                                       "aliases");
+  }
+  if (depth > YamlLimits::kMaxNesting) {
     throw ConfigError(file, "", 0, "nested deeper than " +
                                        std::to_string(YamlLimits::kMaxNesting) + " levels (limit)");
   }

@@ -9,7 +9,7 @@
 #include <set>
 #include <string>
 
-#include "gaitopt/io/atomic_file.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/optimize_config.hpp"
 #include "gaitopt/io/sweep_file.hpp"
@@ -179,7 +179,7 @@ TEST_CASE("bad input: command-line vectors and values", "[reliability]") {
   for (const char* q : {"nan,0,0,0,0", "0,inf,0,0,0", "0,0,1e300,0,0", "0,0,0,0,0x1p3"}) {
     requireBadInput(std::string("model --q ") + q, "--q: ");
   }
-  requireBadInput("model --q 0,0,0,0,0 --qd 0,nan,0,0,0", "--qd: 'nan' is not a finite number");
+  requireBadInput("model --q 0,0,0,0,0 --qd 0,nan,0,0,0", "--qd: not a finite number: 'nan'");
   requireBadInput("model --q 0,0,0,0,0 --qdd 0,0,0,0,-inf", "--qdd: ");
   requireBadInput("model --q 0,0,0,0,0 --qd 0,0,0,0,2e3",
                   "must be in [-1000, 1000] rad/s, got 2e3");

@@ -85,7 +85,7 @@ TEST_CASE("gaitopt impact: bad input exits 2 naming the problem", "[impact]") {
   lifted(0) = q(0) + 1e-4;  // ~40 µm: beyond the projection's 1e-5 m
   expectBad(" --q=" + numbers(lifted) + good_qd + " --mu 0.7", "(|z2| <= 1e-5 m");
   expectBad(good_q + " --qd=" + numbers(-qd) + " --mu 0.7", "V2z = 0.5");
-  expectBad(good_q + good_qd + " --mu -0.1", "--mu: friction coefficient");
+  expectBad(good_q + good_qd + " --mu -0.1", "--mu: must be in [0, 100], got -0.1");
 }
 
 TEST_CASE("gaitopt impact: six decimals of --q are projected onto the ground", "[impact]") {

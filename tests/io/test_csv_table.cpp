@@ -18,7 +18,7 @@ TEST_CASE("csv row: fields, numbers that read back exactly, empty absent values"
   CHECK(row.line() == "0.10000000000000001,-3,SS,,,1.5,-2,0.3333333333\n");
   const std::vector<std::string> f = splitFields(row.str());
   REQUIRE(f.size() == 8);
-  CHECK(parseFiniteNumber(f[0]) == 0.1);
+  CHECK(parseDecimal(f[0]) == 0.1);
   CHECK(csvHeader({"t", "phase"}) == "t,phase\n");
   CHECK(CsvRow().line() == "\n");
 }

@@ -3,7 +3,10 @@
 #include <catch2/catch.hpp>
 
 #include "gaitopt/io/opensim_table.hpp"
+#include "gaitopt/io/opensim_trial_file.hpp"
+#include "gaitopt/io/tab_text.hpp"
 #include "gaitopt/io/trc_file.hpp"
+#include "gaitopt/math/decimal.hpp"
 #include "test_opensim_data.hpp"
 
 using namespace gaitopt;
@@ -79,7 +82,7 @@ TEST_CASE("damaged .mot files are refused naming file, column and line", "[opens
   }
   SECTION("non-numeric value") {
     const std::string p = writeDamaged(dir, lines, {{8, field4("abc")}}, ".mot");
-    requireConfigError(load, p, "ground_force_vz", 8, "not a number: 'abc'");
+    requireConfigError(load, p, "ground_force_vz", 8, "not a finite number: 'abc'");
   }
   SECTION("NaN") {
     const std::string p = writeDamaged(dir, lines, {{8, field4("nan")}}, ".mot");
@@ -142,10 +145,62 @@ TEST_CASE("damaged .trc files are refused naming file, column and line", "[opens
   }
   SECTION("non-numeric time") {
     const std::string p = writeDamaged(dir, lines, {{7, replacedOnce(lines[6], "0.000000", "t0")}}, ".trc");
-    requireConfigError(load, p, "Time", 7, "not a number: 't0'");
+    requireConfigError(load, p, "Time", 7, "not a finite number: 't0'");
   }
   SECTION("units other than mm or m") {
     const std::string p = writeDamaged(dir, lines, {{3, replacedOnce(lines[2], "mm", "cm")}}, ".trc");
     requireConfigError(load, p, "Units", 3, "must be 'mm' or 'm'");
   }
+  SECTION("millimetre data declared as metres") {
+    const std::string p = writeDamaged(dir, lines, {{3, replacedOnce(lines[2], "mm", "m")}}, ".trc");
+    try {
+      load(p);
+      FAIL("no ConfigError");
+    } catch (const ConfigError& e) {
+      CHECK(e.line() == 7);  // the first frame
+      CHECK_THAT(std::string(e.what()), Contains(" m lies beyond 50 m of the origin: check the "
+                                                 "header's Units (millimetres declared as m?)"));
+    }
+  }
+  SECTION("metre data declared as millimetres") {
+    std::vector<std::string> metres = lines;
+    for (std::size_t i = 5; i < metres.size(); ++i) {
+      std::vector<std::string> f = splitTabFields(metres[i], "", 0);
+      if (f.size() < 3) continue;
+      std::string row = f[0] + "\t" + f[1];
+      for (std::size_t c = 2; c < f.size(); ++c)
+        row += "\t" + formatDouble(std::stod(f[c]) * 1e-3);
+      metres[i] = row;
+    }
+    const std::string p = writeDamaged(dir, metres, {}, ".trc");
+    requireConfigError(load, p, "Units", 3,
+                       "every marker lies within 0.05 m of the origin: check the header's Units "
+                       "(metres declared as mm?)");
+  }
+}
+
+TEST_CASE("an IK file's inDegrees flag is checked against its angles", "[opensim_io]") {
+  ScratchDir dir("opensim_units");
+  const std::vector<std::string> lines = fileLines(opensimIk());
+  const auto recording = [&](const std::string& ik) {
+    return readOpenSimRecording({ik, opensimGrf(), ""});
+  };
+  // Degrees declared as radians: pelvis_tilt 10.33 "rad" on the first data row.
+  const std::string no = writeDamaged(dir, lines, {{5, "inDegrees=no"}}, ".mot");
+  requireConfigError(recording, no, "pelvis_tilt", 12,
+                     "angle 10.33 rad with inDegrees=no is beyond half a turn: degrees declared "
+                     "as radians?");
+  // Radians declared as degrees: every angle column converted to radians, the flag kept.
+  std::vector<std::string> radians = lines;
+  for (std::size_t i = 11; i < radians.size(); ++i) {
+    std::vector<std::string> f = splitTabFields(radians[i], "", 0);
+    std::string row = f[0];
+    for (std::size_t c = 1; c < f.size(); ++c)
+      row += "\t" + (c == 2 || c == 3 ? f[c] : formatDouble(std::stod(f[c]) * M_PI / 180.0));
+    radians[i] = row;
+  }
+  requireConfigError(recording, writeDamaged(dir, radians, {}, ".mot"), "knee_angle_r", 12,
+                     "the knee moves by less than 10 degrees over the trial with inDegrees=yes: "
+                     "radians declared as degrees?");
+  CHECK_NOTHROW(recording(opensimIk()));
 }

@@ -16,18 +16,19 @@ constexpr char kCsvSeparator = ',';
 // empty last field; an empty line no field at all.
 std::vector<std::string> splitFields(const std::string& line, char separator = kCsvSeparator);
 
-// The whole of `field` as a finite number in std::stod's syntax (leading blanks allowed);
-// empty otherwise (trailing characters, NaN, inf, out of range).
-std::optional<double> parseFiniteNumber(const std::string& field);
+// A decimal number as written in a CSV cell, a table field or on the command line: digits,
+// sign, point and exponent only (no blanks, hex, inf or nan), at most 64 characters, finite.
+// Empty when it is not one. The one number syntax of every reader and option.
+std::optional<double> parseDecimal(const std::string& field);
 
-// The same, a ConfigError (file, column, line) "not a finite number: '<field>'" otherwise.
+// Why parseDecimal refuses `field`, for messages ("empty value", "not a finite number: 'abc'",
+// "not a decimal number: '0x10' (...)", the field printable and cut at 200 bytes); "" when it
+// accepts it.
+std::string decimalProblem(const std::string& field);
+
+// parseDecimal, or a ConfigError (file, column as key, line) with decimalProblem.
 double parseCsvNumber(const std::string& field, const std::string& file,
                       const std::string& column, int line);
-
-// A decimal number as written in a strict CSV field or on the command line: digits, sign,
-// point and exponent only (no blanks, hex, inf or nan), at most 64 characters, finite. Empty
-// when it is not one.
-std::optional<double> parseDecimal(const std::string& field);
 
 // `v` when finite, absent otherwise: a value that could not be computed is an empty field.
 std::optional<double> finiteOrAbsent(double v);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "gaitopt/ident/measured_data.hpp"
+#include "gaitopt/model/robot_params.hpp"
 
 namespace gaitopt {
 
@@ -16,12 +17,28 @@ namespace gaitopt {
 constexpr int kMinSamplesPerStep = 20;
 constexpr int kMinSteps = 3;
 
+// Plausibility limits (docs/reliability.md): more samples than kMaxMeasuredRows would cost
+// `diagnose` over about 1 GB; a joint angle beyond two turns is not radians of a walking robot
+// (degrees, a broken encoder); a time gap inside a step over kMaxGapInSamples median sample
+// intervals is a recording fault (gaps belong between steps); a torque beyond
+// kMaxTorqueEnvelopeMultiple times the robot's largest envelope torque is not a motor torque.
+constexpr std::size_t kMaxMeasuredRows = 100000;
+constexpr double kMaxMeasuredAngle = 12.566370614359172;  // 4 pi rad
+constexpr double kMaxGapInSamples = 10.0;
+constexpr double kMaxTorqueEnvelopeMultiple = 10.0;
+
 // Throws ConfigError naming the file, the CSV line, the row and column and the problem: missing
 // or unknown column, incomplete optional group, NaN/inf or non-numeric value, non-increasing
 // time, unknown phase/stance label, non-integer or decreasing step, a step repeated after
-// another, a step with fewer than kMinSamplesPerStep samples, fewer than kMinSteps steps, and no
-// torque and no reaction columns at all.
+// another, a step with fewer than kMinSamplesPerStep samples, fewer than kMinSteps steps, no
+// torque and no reaction columns at all, more than kMaxMeasuredRows rows, an angle beyond
+// kMaxMeasuredAngle, a time gap inside a step beyond kMaxGapInSamples sample intervals.
 MeasuredData readMeasuredCsv(const std::string& path);
+
+// Throws ConfigError naming `path`, the column and the sample when a measured torque exceeds
+// kMaxTorqueEnvelopeMultiple times the largest torque of `robot`'s envelope.
+void requirePlausibleTorques(const MeasuredData& data, const RobotParams& robot,
+                             const std::string& path);
 
 // The CSV text (header then rows, full precision); readMeasuredCsv reads it back identically.
 std::string measuredCsv(const MeasuredData& data);

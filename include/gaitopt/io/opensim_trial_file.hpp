@@ -16,7 +16,13 @@ struct OpenSimImportFiles {
   std::string trc;  // optional ("" = none): markers for the trunk line and the belt speed
 };
 
-// The tables of the files; ConfigError for a bad file (io/opensim_table.hpp, io/trc_file.hpp).
+// Least range of a knee angle over a walking trial [rad] (10 degrees; walking bends it ~60).
+constexpr double kMinKneeRange = 0.17453292519943295;
+
+// The tables of the files; ConfigError for a bad file (io/opensim_table.hpp, io/trc_file.hpp),
+// and for an IK file whose inDegrees flag disagrees with its angles: an angle the importer reads
+// beyond half a turn (degrees declared as radians), or a knee moving less than kMinKneeRange
+// (radians declared as degrees).
 OpenSimRecording readOpenSimRecording(const OpenSimImportFiles& files);
 
 // Reads and converts; bad files or data that cannot be labelled are ConfigErrors naming the

@@ -40,9 +40,9 @@ OptimizationOutputs optimizationOutputs(const GaitEvaluator& evaluator,
                                         const OptimizationResult& result, const std::string& dir,
                                         const std::function<void(JsonWriter&)>& extra = {});
 
-// Creates `dir` if needed and writes the documents, each atomically; `dir` is meant to be a
-// fresh directory (a StagedDirectory's, or a folder inside one), so that the three files
-// appear together when it is put in place.
+// Creates `dir` if needed and writes the documents as new files; `dir` is a staging folder of
+// an OutputTransaction (or a folder inside one), so that the three files appear together when
+// it is published.
 void writeOptimizationOutputs(const std::string& dir, const OptimizationOutputs& outputs);
 
 // The `random_starts` member of summary.json (`gaitopt optimize --random-starts`): the count,

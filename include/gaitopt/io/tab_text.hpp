@@ -28,9 +28,4 @@ std::string trimBlanks(const std::string& text);
 std::vector<std::string> splitTabFields(const std::string& line, const std::string& file,
                                         int line_number);
 
-// The whole of `field` as a finite number; anything else (empty, trailing characters, NaN,
-// inf, out of range) is a ConfigError naming file, column and line.
-double parseTableNumber(const std::string& field, const std::string& file,
-                        const std::string& column, int line_number);
-
 }  // namespace gaitopt

@@ -15,7 +15,13 @@ namespace gaitopt {
 // NumFrames not matching the table, Units other than mm/m), a row with the wrong number of
 // fields, an empty (occluded) or non-numeric value, a non-increasing time, a frame count
 // different from NumFrames (truncated file). Gaps are not filled: a marker file with
-// occlusions must be gap-filled first. Limits: see tab_text.hpp.
+// occlusions must be gap-filled first. Limits: see tab_text.hpp. The declared Units are checked
+// against the data: a coordinate beyond kMaxMarkerDistance (millimetres declared as `m`) or
+// every coordinate within kMinMarkerSpread of the origin (metres declared as `mm`) is refused.
 TrcData readTrcFile(const std::string& path);
+
+// A gait laboratory's extent and the least extent of a walking subject's markers [m].
+constexpr double kMaxMarkerDistance = 50.0;
+constexpr double kMinMarkerSpread = 0.05;
 
 }  // namespace gaitopt

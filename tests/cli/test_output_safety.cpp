@@ -1,0 +1,268 @@
+// Output safety of every writing command (docs/reliability.md): bad output locations exit 2
+// naming the problem with nothing written or overwritten anywhere; planted links at final or
+// staging names are never followed; stale staging folders of killed runs are removed by the
+// next run; a run killed at any time leaves the old complete result or the new one.
+#include <catch2/catch.hpp>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "test_files.hpp"
+#include "test_opensim_data.hpp"
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+using namespace gaitopt::test;
+
+namespace {
+
+const std::string kGait = sourcePath("configs/gait/default_step.yaml");
+const std::string kRobot = sourcePath("configs/robot/rabbit_miossec.yaml");
+
+ScratchDir& scratch() {
+  static ScratchDir dir("output_safety", "input");
+  return dir;
+}
+
+// Every entry under `dir`, hidden ones included, with its content ("-> target" for a link,
+// "/" for a directory): any write, removal or new file shows up as a difference.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> entries;
+  for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator();
+       ++it) {
+    const fs::path rel = fs::relative(it->path(), dir);
+    if (it->is_symlink())
+      entries[rel.string()] = "-> " + fs::read_symlink(it->path()).string();
+    else if (it->is_directory())
+      entries[rel.string()] = "/";
+    else
+      entries[rel.string()] = readFile(it->path().string());
+  }
+  return entries;
+}
+
+// A sandbox with a precious file, a folder of someone else's files, a copy of the robot file
+// and a run's previous output; runs start in it, so `.` and relative names point into it.
+struct Sandbox {
+  fs::path dir = scratch().fresh("sandbox");
+  Sandbox() {
+    fs::create_directories(dir / "foreign");
+    fs::create_directories(dir / "previous");
+    std::ofstream(dir / "precious.txt") << "precious\n";
+    std::ofstream(dir / "foreign" / "notes.txt") << "mine\n";
+    std::ofstream(dir / "previous" / "extended_robot.yaml") << readFile(kRobot);
+    fs::copy_file(kRobot, dir / "robot.yaml");
+  }
+  // Runs gaitopt `args` with the sandbox as working directory.
+  CliRun run(const std::string& args) const {
+    return runCli("--version >/dev/null; cd " + quoted(dir.string()) + " && " +
+                  quoted(GAITOPT_CLI) + " " + args);
+  }
+};
+
+// Sets the modification time of `path` (not of a link's target) to an hour ago.
+void backdate(const fs::path& path) {
+  const timespec hour_ago[2] = {{time(nullptr) - 3600, 0}, {time(nullptr) - 3600, 0}};
+  REQUIRE(::utimensat(AT_FDCWD, path.c_str(), hour_ago, AT_SYMLINK_NOFOLLOW) == 0);
+}
+
+// Hidden staging folders beside the entries of `dir`.
+std::vector<std::string> stagingEntries(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().find(".gaitopt-") != std::string::npos)
+      names.push_back(e.path().filename().string());
+  return names;
+}
+
+}  // namespace
+
+TEST_CASE("output safety: bad output locations of every command", "[reliability][cli]") {
+  const std::string gait = quoted(kGait), robot = quoted(kRobot);
+  const std::string opensim = "import-opensim --ik " + quoted(opensimIk()) + " --grf " +
+                              quoted(opensimGrf()) + " --trunk model --robot " +
+                              quoted(sourcePath("configs/robot/human_subject01.yaml")) + " ";
+  const std::string simulate = "simulate --steps 1 --gait " + gait;
+  const std::string stability = "stability --gait " + gait;
+  const std::string diagnose = "diagnose --robot " + robot + " --data " +
+                               quoted(sourcePath("fuzz/seeds/measured.csv"));
+  const std::string impact_map = "impact-map --robot " + robot +
+                                 " --q=-0.4,-2.8415926535897933,-3.3415926535897933,"
+                                 "0.50741499796637735,-2.7987334866164235";
+  const std::string merge = "sweep-merge " + quoted(sourcePath("tests/data/sample_sweep"));
+  const std::string synth = "synth --steps 3 --robot " + robot + " --gait " + gait;
+  const std::string model = "export-model --format urdf --robot robot.yaml";
+  const std::string exporter = "export --steps 1 --gait " + gait;
+  const std::string plot = "plot stick " + quoted(sourcePath("tests/data/sample_run"));
+  struct Case {
+    std::string args, message;
+  };
+  const std::vector<Case> cases = {
+      // Directory results: `/`, `.`, a file, someone else's folder, a folder holding an input.
+      {simulate + " --out /", "is the current directory or contains it"},
+      {simulate + " --out .", "is the current directory or contains it"},
+      {simulate + " --out precious.txt", "--out 'precious.txt' exists and is not a directory"},
+      {simulate + " --out foreign", "holds 'notes.txt', which gaitopt did not write"},
+      {stability + " --out /", "is the current directory or contains it"},
+      {stability + " --out foreign", "holds 'notes.txt'"},
+      {diagnose + " --out .", "is the current directory or contains it"},
+      {diagnose + " --out foreign", "holds 'notes.txt'"},
+      {"diagnose --robot previous/extended_robot.yaml --data " +
+           quoted(sourcePath("fuzz/seeds/measured.csv")) + " --out previous",
+       "--out 'previous' holds the input --robot 'previous/extended_robot.yaml'"},
+      {"evaluate --gait " + gait + " --out /", "is the current directory or contains it"},
+      {impact_map + " --out /", "is the current directory or contains it"},
+      {impact_map + " --out precious.txt", "exists and is not a directory"},
+      {impact_map + " --out foreign", "holds 'notes.txt'"},
+      {merge + " --out " + quoted(sourcePath("tests/data/sample_sweep")),
+       "names the input SHARD_DIR"},
+      // File results: `/`, `.`, a directory, a missing folder, an input, another output.
+      {model + " --out /", "--out '/' is a directory, a file is expected"},
+      {model + " --out .", "--out '.' is a directory, a file is expected"},
+      {model + " --out foreign/", "is a directory, a file is expected"},
+      {model + " --out missing/robot.urdf", "its directory 'missing' does not exist"},
+      {model + " --out robot.yaml", "--out 'robot.yaml' names the input --robot 'robot.yaml'"},
+      {model + " --out ./robot.yaml", "names the input --robot"},
+      {exporter + " --out " + gait, "names the input --gait"},
+      {exporter + " --out foreign", "is a directory, a file is expected"},
+      {synth + " --out " + robot, "names the input --robot"},
+      {synth + " --out .", "is a directory, a file is expected"},
+      {opensim + "--out " + quoted(opensimIk()), "names the input --ik"},
+      {opensim + "--out o.csv --report o.csv",
+       "--report 'o.csv' is the same as, or inside, the output --out of this run"},
+      {opensim + "--out foreign/", "is a directory, a file is expected"},
+      {plot + " --out /x/y/z.png", "its directory '/x/y' does not exist"},
+  };
+  for (const Case& c : cases) {
+    const Sandbox box;
+    const auto before = snapshot(box.dir);
+    const CliRun run = box.run(c.args);
+    INFO(c.args << "\n" << run.err);
+    CHECK(run.exit_code == 2);
+    CHECK_THAT(run.err, Contains(c.message));
+    CHECK(snapshot(box.dir) == before);  // nothing written, removed or left behind
+  }
+}
+
+TEST_CASE("output safety: planted links at final and staging names are not followed",
+          "[reliability][cli]") {
+  const Sandbox box;
+  const fs::path precious = box.dir / "precious.txt";
+  // A link at the final name of a file result is replaced by the file.
+  fs::create_symlink(precious, box.dir / "robot.urdf");
+  // A link at a staging name (hidden, beside --out), old enough to count as stale, pointing at
+  // a folder: the stale-folder cleanup must neither follow nor remove it.
+  fs::create_symlink(box.dir / "foreign", box.dir / ".robot.urdf.gaitopt-abc123");
+  backdate(box.dir / ".robot.urdf.gaitopt-abc123");
+  const CliRun run = box.run("export-model --format urdf --robot robot.yaml --out robot.urdf");
+  INFO(run.err);
+  REQUIRE(run.exit_code == 0);
+  CHECK(readFile(precious.string()) == "precious\n");
+  CHECK_FALSE(fs::is_symlink(box.dir / "robot.urdf"));
+  CHECK_THAT(readFile((box.dir / "robot.urdf").string()), Contains("<robot"));
+  CHECK(readFile((box.dir / "foreign" / "notes.txt").string()) == "mine\n");
+  CHECK(fs::is_symlink(box.dir / ".robot.urdf.gaitopt-abc123"));
+
+  // plot: the script draws into the staging folder; the link at the figure's name is replaced.
+  fs::create_symlink(precious, box.dir / "stick.png");
+  const CliRun plot =
+      box.run("plot stick " + quoted(sourcePath("tests/data/sample_run")) + " --out stick.png");
+  INFO(plot.err);
+  REQUIRE(plot.exit_code == 0);
+  CHECK_THAT(plot.out, Contains("wrote stick.png"));
+  CHECK(readFile(precious.string()) == "precious\n");
+  CHECK_FALSE(fs::is_symlink(box.dir / "stick.png"));
+  CHECK(fs::file_size(box.dir / "stick.png") > 1000);
+  CHECK(stagingEntries(box.dir) == std::vector<std::string>{".robot.urdf.gaitopt-abc123"});
+
+  // A link at an output name inside a directory result is replaced, not followed.
+  fs::create_directories(box.dir / "walk");
+  fs::create_symlink(precious, box.dir / "walk" / "steps.csv");
+  const CliRun walk = box.run("simulate --steps 1 --gait " + quoted(kGait) + " --out walk");
+  INFO(walk.err);
+  REQUIRE(walk.exit_code == 0);
+  CHECK(readFile(precious.string()) == "precious\n");
+  CHECK_FALSE(fs::is_symlink(box.dir / "walk" / "steps.csv"));
+  CHECK_THAT(readFile((box.dir / "walk" / "steps.csv").string()), Contains("step"));
+}
+
+TEST_CASE("output safety: stale staging folders of ended runs are removed, live ones kept",
+          "[reliability][cli]") {
+  const Sandbox box;
+  const auto staging = [&](const std::string& suffix) {
+    const fs::path p = box.dir / (".robot.urdf.gaitopt-" + suffix);
+    fs::create_directories(p);
+    std::ofstream(p / "robot.urdf") << "partial";
+    return p;
+  };
+  const fs::path stale = staging("old123"), old_format = staging("abcdefghij"),
+                 fresh = staging("new123"), locked = staging("lck123");
+  backdate(stale);
+  backdate(old_format);
+  backdate(locked);
+  // A live run holds its folder's lock: this process plays it.
+  const int fd = ::open(locked.c_str(), O_RDONLY | O_DIRECTORY);
+  REQUIRE(fd >= 0);
+  REQUIRE(::flock(fd, LOCK_EX) == 0);
+  const CliRun run = box.run("export-model --format urdf --robot robot.yaml --out robot.urdf");
+  ::close(fd);
+  INFO(run.err);
+  REQUIRE(run.exit_code == 0);
+  CHECK_FALSE(fs::exists(stale));       // unlocked, an hour old: its run has ended
+  CHECK_FALSE(fs::exists(old_format));  // the 10-character names of earlier versions too
+  CHECK(fs::exists(fresh));             // too young: a run may be between mkdtemp and flock
+  CHECK(fs::exists(locked));            // locked: its run is alive
+}
+
+TEST_CASE("output safety: a killed run leaves the old or the new result, never a mix",
+          "[reliability][cli]") {
+  const Sandbox box;
+  // `old_run` then `new_run` write the same files with other content into OUT; `new_run` is
+  // killed (SIGKILL) after each delay: OUT must then hold the complete old or the complete new
+  // result (its complete reference run), whatever the moment.
+  const auto requireOldOrNew = [&](const std::string& old_run, const std::string& new_run,
+                                   const std::vector<std::string>& delays) {
+    REQUIRE(box.run(new_run + " --out reference").exit_code == 0);
+    const auto reference = snapshot(box.dir / "reference");
+    REQUIRE(box.run(old_run + " --out walk").exit_code == 0);
+    const auto old = snapshot(box.dir / "walk");
+    REQUIRE(old != reference);
+    int killed = 0;
+    for (const std::string& delay : delays) {
+      const CliRun run = box.run("--version >/dev/null; timeout -s KILL " + delay + " " +
+                                 quoted(GAITOPT_CLI) + " " + new_run + " --out walk");
+      INFO(new_run << ": killed after " << delay << " s, exit " << run.exit_code);
+      killed += run.exit_code == 137;
+      const auto now = snapshot(box.dir / "walk");
+      CHECK((now == old || now == reference));
+      if (now == reference) REQUIRE(box.run(old_run + " --out walk").exit_code == 0);
+    }
+    CHECK(killed > 0);  // at least one run was really killed mid-way
+    // A killed run leaves its staging folder; the next run removes it once it is stale.
+    for (const std::string& name : stagingEntries(box.dir)) backdate(box.dir / name);
+    REQUIRE(box.run(old_run + " --out walk").exit_code == 0);
+    CHECK(stagingEntries(box.dir).empty());
+    fs::remove_all(box.dir / "reference");
+    fs::remove_all(box.dir / "walk");
+  };
+  // simulate: 4 files, about 0.5 s for 30 steps, written at the end.
+  const std::string gait = quoted(kGait);
+  requireOldOrNew("simulate --steps 1 --gait " + gait, "simulate --steps 30 --gait " + gait,
+                  {"0.05", "0.2", "0.3", "0.35", "0.4", "0.45", "0.5", "0.6", "0.8", "1.2"});
+  // diagnose: 4 files, about 1 s on 6 synthetic steps with a hidden knee friction.
+  const std::string robot = quoted(kRobot);
+  REQUIRE(box.run("synth --steps 6 --effect coulomb@knee_left=4 --robot " + robot + " --gait " +
+                  gait + " --out data.csv")
+              .exit_code == 0);
+  const std::string diagnose = "diagnose --quiet --robot " + robot + " --data data.csv";
+  requireOldOrNew(diagnose + " --effects viscous", diagnose,
+                  {"0.1", "0.4", "0.7", "0.8", "0.9", "1.0", "1.1", "1.3", "2"});
+}
