@@ -1,9 +1,12 @@
 #include "cli_common.hpp"
 
+#include "data_files.hpp"
+
 #include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/csv_table.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -72,8 +75,16 @@ std::function<bool(const std::string&)> ourOutputs(const SolverSettings* solver)
   return [ipopt_output](const std::string& name) {
     const bool speed_folder = name.size() > 1 && name[0] == 'v' &&
                               name.find_first_not_of("0123456789.", 1) == std::string::npos;
+    // A figure `gaitopt plot` made of the old result goes with it (docs/commands/plot.md).
     return name == "summary.json" || name == "gait.yaml" || name == "trajectory.csv" ||
-           name == "sweep.csv" || speed_folder || (!ipopt_output.empty() && name == ipopt_output);
+           name == "sweep.csv" || speed_folder || (!ipopt_output.empty() && name == ipopt_output) ||
+           isPlotFigure(name);
+  };
+}
+
+std::function<bool(const std::string&)> ourFiles(std::vector<std::string> names) {
+  return [names = std::move(names)](const std::string& name) {
+    return std::find(names.begin(), names.end(), name) != names.end() || isPlotFigure(name);
   };
 }
 

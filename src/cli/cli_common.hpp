@@ -7,6 +7,7 @@
 #include <ostream>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "gaitopt/opt/optimizer.hpp"
 #include "gaitopt/sim/closed_loop.hpp"
@@ -36,9 +37,12 @@ void requireSampleRows(const std::string& options, double steps, double step_dur
 CLI::Validator integerWithin(long long lo, long long hi);
 
 // Whether `name` is an entry gaitopt writes into an output directory (summary.json,
-// gait.yaml, trajectory.csv, sweep.csv, v<speed> folders, or the Ipopt output_file of
-// `solver`); OutputTransaction::directory refuses an existing --out holding anything else.
+// gait.yaml, trajectory.csv, sweep.csv, v<speed> folders, the Ipopt output_file of `solver`, or
+// a figure `gaitopt plot` drew of the result); OutputTransaction::directory refuses an existing
+// --out holding anything else, and replaces the rest with the new result.
 std::function<bool(const std::string&)> ourOutputs(const SolverSettings* solver = nullptr);
+// The same for a command that writes `names`.
+std::function<bool(const std::string&)> ourFiles(std::vector<std::string> names);
 
 // The criterion of a result; it exists only for a defined step whose motion was computed.
 std::optional<double> criterionOf(const OptimizationResult& r, Criterion c);

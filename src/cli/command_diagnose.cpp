@@ -80,7 +80,8 @@ void registerDiagnoseCommand(CLI::App& app, int& exit_code) {
     requirePlausibleTorques(data, robot, args->data);
     OutputTransaction output({{"--robot", args->robot}, {"--data", args->data}});
     const std::filesystem::path dir = output.directory(
-        "--out", args->out, {"diagnosis.json", "residuals.csv", "report.md", "extended_robot.yaml"});
+        "--out", args->out,
+        ourFiles({"diagnosis.json", "residuals.csv", "report.md", "extended_robot.yaml"}));
     Diagnosis d;
     try {
       d = diagnose(robot, ModelOptions{}, data, options);

@@ -46,7 +46,8 @@ void registerEvaluateCommand(CLI::App& app, int& exit_code) {
       ->check(numberWithin(0.0, 1e5, true, "Hz"));
   cmd->callback([args, &exit_code]() {
     // Everything that can fail on bad input happens before the output directory is touched.
-    GaitFile gait = loadGaitFileWithOverrides(args->gait, overridesOf(args->overrides, "options.target_speed"));
+    GaitFile gait =
+        loadGaitFileWithOverrides(args->gait, overridesOf(args->overrides, "options.target_speed"));
     if (args->sample_rate) gait.options.sample_rate = *args->sample_rate;
     OutputTransaction output({{"--gait", args->gait}});
     const fs::path dir = output.directory("--out", args->out, ourOutputs());  // before any work

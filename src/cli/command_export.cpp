@@ -125,7 +125,8 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"stop", "none"}));
   cmd->callback([args, &exit_code]() {
     if (!args->library.empty()) return exportLibrary(*args, exit_code);
-    const GaitFile gait = loadGaitFileWithOverrides(args->gait, overridesOf(args->overrides, nullptr));
+    const GaitFile gait =
+        loadGaitFileWithOverrides(args->gait, overridesOf(args->overrides, nullptr));
     // The JSON export writes each virtual constraint as one polynomial; a B-spline is piecewise.
     if (args->format == "json" && gait.options.parameterisation.basis == PathBasis::BSpline) {
       std::cerr << "gaitopt: error: " << args->gait << ": parameterisation.basis: the JSON "

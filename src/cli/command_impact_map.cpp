@@ -79,7 +79,8 @@ int runImpactMap(const ImpactMapArgs& args) {
                          std::to_string(kMaxMapPoints));
   const Vec5 q = foot2OnGround(model, Vec5(Eigen::Map<const Vec5>(qv.data())), "impact-map");
   OutputTransaction output({{"--robot", robot}});
-  const std::string dir = output.directory("--out", args.out, {"map.csv", "intervals.csv"});
+  const std::string dir =
+      output.directory("--out", args.out, ourFiles({"map.csv", "intervals.csv"}));
   ImpactMapRequest req;
   req.model = parseImpactModel(args.model);
   req.mu_min = mu.a;

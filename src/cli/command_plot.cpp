@@ -27,24 +27,6 @@ struct PlotArgs {
   std::string kind, run_dir, out;
 };
 
-// GAITOPT_PLOT_SCRIPTS overrides gaitopt's own scripts/plot (installed or in the source tree).
-fs::path scriptsDir() {
-  const char* env = std::getenv("GAITOPT_PLOT_SCRIPTS");
-  return env && *env ? fs::path(env) : dataDirectory() / "scripts" / "plot";
-}
-
-// Figure kinds: the scripts KIND.py of the directory (files starting with '_' are helpers).
-std::vector<std::string> kinds(const fs::path& dir) {
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(dir, ec)) {
-    const fs::path& p = entry.path();
-    if (p.extension() == ".py" && p.stem().string().front() != '_') names.push_back(p.stem());
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 std::string joined(const std::vector<std::string>& names) {
   std::string s;
   for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;

@@ -129,7 +129,7 @@ void registerSimulateCommand(CLI::App& app, int& exit_code) {
         args->plant.empty() ? controller : buildModel(loadRobot(args->plant), gait.model_options);
     OutputTransaction output({{"--gait", args->gait}, {"--plant", args->plant}});
     const fs::path dir = output.directory(
-        "--out", args->out, {"summary.json", "steps.csv", "trajectory.csv", "tracking.csv"});
+        "--out", args->out, ourFiles({"summary.json", "steps.csv", "trajectory.csv", "tracking.csv"}));
     const GaitEvaluator evaluator(gait.robot, gait.options, gait.model_options);
     const GaitEvaluation<double> e = evaluator.evaluate(gait.parameters);
     if (!e.defined() || !e.motion_computed) {

@@ -66,7 +66,8 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
     const GaitFile gait = loadGaitFile(a->gait);
     OutputTransaction output({{"--gait", a->gait}});
     const std::string dir = output.directory(
-        "--out", a->out, {"stability.json", "jacobian.csv", "zero_dynamics_map.csv", "ds_bounds.csv"});
+        "--out", a->out,
+        ourFiles({"stability.json", "jacobian.csv", "zero_dynamics_map.csv", "ds_bounds.csv"}));
     const GaitEvaluator ev(gait.robot, gait.options, gait.model_options);
     const GaitEvaluation<double> e = ev.evaluate(gait.parameters);
     if (!e.defined() || !e.motion_computed) {

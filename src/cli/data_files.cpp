@@ -1,6 +1,8 @@
 #include "data_files.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cstdlib>
 #include <iostream>
 #include <system_error>
 
@@ -15,6 +17,29 @@ fs::path dataDirectory() {
     if (fs::is_directory(installed / "configs", ec)) return installed;
   }
   return fs::path(GAITOPT_SOURCE_DIR);
+}
+
+fs::path scriptsDir() {
+  const char* env = std::getenv("GAITOPT_PLOT_SCRIPTS");
+  return env && *env ? fs::path(env) : dataDirectory() / "scripts" / "plot";
+}
+
+std::vector<std::string> kinds(const fs::path& dir) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const fs::path& p = entry.path();
+    if (p.extension() == ".py" && p.stem().string().front() != '_') names.push_back(p.stem());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+bool isPlotFigure(const std::string& name) {
+  const fs::path p(name);
+  if (p.extension() != ".png") return false;
+  const std::vector<std::string> known = kinds(scriptsDir());
+  return std::find(known.begin(), known.end(), p.stem().string()) != known.end();
 }
 
 void addRobotOption(CLI::App* cmd, std::string& target) {

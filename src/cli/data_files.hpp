@@ -5,6 +5,7 @@
 // resolved there, not in the current folder, and the path used is printed.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace CLI {
 class App;
@@ -15,6 +16,13 @@ namespace gaitopt::cli {
 constexpr const char* kDefaultRobot = "configs/robot/rabbit_miossec.yaml";
 
 std::filesystem::path dataDirectory();
+
+// The scripts of `gaitopt plot`: $GAITOPT_PLOT_SCRIPTS, else the data directory's scripts/plot.
+std::filesystem::path scriptsDir();
+// Figure kinds: the scripts KIND.py of `dir` (files starting with '_' are helpers), sorted.
+std::vector<std::string> kinds(const std::filesystem::path& dir);
+// A figure `gaitopt plot` writes into a run folder by default: KIND.png of a known kind.
+bool isPlotFigure(const std::string& name);
 
 // `--robot FILE`: empty `target` when not given (robotOrDefault then names the default).
 void addRobotOption(CLI::App* cmd, std::string& target);

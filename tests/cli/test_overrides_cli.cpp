@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <fstream>
 
 #include "test_files.hpp"
 #include "test_support.hpp"
@@ -61,4 +62,31 @@ TEST_CASE("gaitopt export --robot --set: the embedded gait is the one exported",
   CHECK_THAT(json, Contains("\"overrides\": \"options.friction_coefficient=0.55\""));
   CHECK_THAT(json, Contains("with the overrides of metadata.overrides"));
   CHECK_THAT(json, Contains("friction_coefficient: 0.55"));
+}
+
+TEST_CASE("a run folder with the figures of its result is replaced by a re-run", "[rerun]") {
+  test::ScratchDir dir("rerun");
+  const std::string out = dir.fresh("run");
+  const std::string eval = "evaluate --gait " +
+                           test::quoted(test::sourcePath("configs/gait/default_step.yaml")) +
+                           " --out " + test::quoted(out);
+  REQUIRE(runCli(eval).exit_code == 0);
+  // `gaitopt plot stick|torques OUT` leaves OUT/stick.png, OUT/torques.png: a re-run replaces
+  // the result and its figures go with it.
+  std::ofstream(out + "/stick.png") << "figure";
+  std::ofstream(out + "/torques.png") << "figure";
+  const test::CliRun again = runCli(eval);
+  CHECK(again.exit_code == 0);
+  CHECK(std::filesystem::exists(out + "/summary.json"));
+  CHECK_FALSE(std::filesystem::exists(out + "/stick.png"));
+  CHECK_FALSE(std::filesystem::exists(out + "/torques.png"));
+  // A file that no gaitopt command writes there is the user's: the folder is refused.
+  for (const std::string name : {"notes.txt", "photo.png", "stick.svg"}) {
+    std::ofstream(out + "/" + name) << "user's";
+    const test::CliRun refused = runCli(eval);
+    INFO(name);
+    CHECK(refused.exit_code == 2);
+    CHECK_THAT(refused.err, Contains("holds '" + name + "', which gaitopt did not write"));
+    std::filesystem::remove(out + "/" + name);
+  }
 }
