@@ -42,14 +42,37 @@ gaitopt_install_packages() {
       return 1
     fi
   fi
-  ${as_root[@]+"${as_root[@]}"} env DEBIAN_FRONTEND=noninteractive apt-get update
-  ${as_root[@]+"${as_root[@]}"} env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
-    "${missing[@]}"
+  # apt's own output goes to a log, shown only when it fails.
+  local log
+  log="$(mktemp -t gaitopt-apt.XXXXXX.log)"
+  if ! { ${as_root[@]+"${as_root[@]}"} env DEBIAN_FRONTEND=noninteractive apt-get update &&
+         ${as_root[@]+"${as_root[@]}"} env DEBIAN_FRONTEND=noninteractive apt-get install -y \
+           --no-install-recommends "${missing[@]}"; } >"$log" 2>&1; then
+    tail -n 30 "$log" >&2
+    echo "setup: error: apt-get failed (whole log: $log)" >&2
+    return 1
+  fi
+  rm -f "$log"
+  echo "setup: installed ${#missing[@]} packages"
 }
 
+# The build's output goes to build/build.log, shown only when it fails (VERBOSE=1: on the
+# terminal).
 gaitopt_build() {
-  cmake -S "$GAITOPT_ROOT" -B "$GAITOPT_ROOT/build" -DCMAKE_BUILD_TYPE=Release
-  cmake --build "$GAITOPT_ROOT/build" -j"$(nproc)"
+  local log="$GAITOPT_ROOT/build/build.log"
+  mkdir -p "$GAITOPT_ROOT/build"
+  echo "setup: building gaitopt (Release, build/; log: build/build.log)"
+  if [ -n "${VERBOSE:-}" ]; then
+    cmake -S "$GAITOPT_ROOT" -B "$GAITOPT_ROOT/build" -DCMAKE_BUILD_TYPE=Release
+    cmake --build "$GAITOPT_ROOT/build" -j"$(nproc)"
+    return
+  fi
+  if ! { cmake -S "$GAITOPT_ROOT" -B "$GAITOPT_ROOT/build" -DCMAKE_BUILD_TYPE=Release &&
+         cmake --build "$GAITOPT_ROOT/build" -j"$(nproc)"; } >"$log" 2>&1; then
+    tail -n 40 "$log" >&2
+    echo "setup: error: the build failed (whole log: build/build.log)" >&2
+    return 1
+  fi
 }
 
 gaitopt_install_packages

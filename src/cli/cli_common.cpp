@@ -141,7 +141,9 @@ OptimizeProgress::OptimizeProgress(const GaitEvaluator& evaluator, Criterion c, 
                                    std::ostream& out)
     : evaluator_(evaluator),
       criterion_(c),
-      in_place_(mode == ProgressMode::Auto && &out == &std::cout && isatty(STDOUT_FILENO)),
+      style_(mode == ProgressMode::Lines ? Style::Every
+             : &out == &std::cout && isatty(STDOUT_FILENO) ? Style::InPlace
+                                                            : Style::StageEnds),
       out_(out) {}
 
 void OptimizeProgress::report(const std::string& stage, const GaitParameters& p, int iteration) {
@@ -150,8 +152,14 @@ void OptimizeProgress::report(const std::string& stage, const GaitParameters& p,
   const std::string line = "[" + stage + "] iter " + std::to_string(iteration) + "  " +
                            progressText(evaluator_, evaluator_.evaluate(p), criterion_) +
                            "  elapsed " + shortNumber(elapsed, "%.1f") + " s";
-  if (!in_place_) {
+  if (style_ == Style::Every) {
     out_ << line << "\n" << std::flush;
+    return;
+  }
+  if (style_ == Style::StageEnds) {
+    if (stage != stage_ && !pending_.empty()) out_ << pending_ << "\n" << std::flush;
+    pending_ = line;
+    stage_ = stage;
     return;
   }
   if (open_line_ && stage != stage_) out_ << "\n";  // the last line of each stage stays
@@ -162,7 +170,9 @@ void OptimizeProgress::report(const std::string& stage, const GaitParameters& p,
 
 void OptimizeProgress::endLine() {
   if (open_line_) out_ << "\n" << std::flush;
+  if (!pending_.empty()) out_ << pending_ << "\n" << std::flush;
   open_line_ = false;
+  pending_.clear();
   stage_.clear();
 }
 

@@ -72,7 +72,9 @@ std::string elapsedAndRemaining(double elapsed_s, int done, int total);
 enum class ProgressMode { Auto, Lines };
 
 // Progress of optimisations for SolverSettings::on_iteration: evaluates the solver's point
-// and prints "[stage] iter k  <progressText>  elapsed t s", one final line per stage.
+// and prints "[stage] iter k  <progressText>  elapsed t s". Auto: on a terminal one line per
+// stage updated in place, otherwise (a log, a pipe) the last line of each stage only; Lines:
+// every line.
 class OptimizeProgress {
  public:
   OptimizeProgress(const GaitEvaluator& evaluator, Criterion c, ProgressMode mode,
@@ -82,11 +84,13 @@ class OptimizeProgress {
   std::function<void(const std::string&, const GaitParameters&, int)> hook();
 
  private:
+  enum class Style { InPlace, StageEnds, Every };
   const GaitEvaluator& evaluator_;
   Criterion criterion_;
-  bool in_place_;
+  Style style_;
   std::ostream& out_;
   std::string stage_;
+  std::string pending_;  // StageEnds: the stage's last line, printed when the stage ends
   bool open_line_ = false;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };

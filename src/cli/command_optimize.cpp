@@ -105,7 +105,7 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
   cmd->add_flag("--verbose", args->verbose,
                 "Also the solver's own lines (scaled objective and violation)");
   cmd->add_option("--progress", args->progress,
-                  "auto: on a terminal one line per stage updated in place; lines: every line")
+                  "auto: one line per stage (updated in place on a terminal); lines: every line")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "lines"}));
   cmd->callback([args, &exit_code, seed, starts, global]() {
@@ -174,7 +174,7 @@ void registerOptimizeCommand(CLI::App& app, int& exit_code) {
     if (args->random_starts > 0) printStartsTable(std::cout, runs, criterion);
     if (args->global > 0) printClusters(std::cout, global_result, criterion);
     std::cout << "optimize: " << r.status << ", " << criterionName(criterion) << " "
-              << criterionText(r, criterion) << ", speed "
+              << criterionText(r, criterion) << " " << criterionUnit(criterion) << ", speed "
               << (zeroDynamicsComputed(evaluator, e) ? shortNumber(e.speed, "%.6g") + " m/s"
                                                      : std::string("n/a"))
               << ", " << r.iterations << " iterations, " << shortNumber(r.wall_time_s, "%.3g")
