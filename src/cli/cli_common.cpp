@@ -125,7 +125,7 @@ std::string progressText(const GaitEvaluator& ev, const GaitEvaluation<double>& 
       }
     }
   }
-  if (worst_group < 0) return text + "  constraints hold";
+  if (worst_group < 0) return text + "  constraints hold at the nodes";
   return text + "  worst " + ev.layout()[worst_group].name + " +" +
          shortNumber(worst_value, "%.3g") + " " + ev.layout()[worst_group].unit;
 }

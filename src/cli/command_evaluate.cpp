@@ -69,16 +69,22 @@ void registerEvaluateCommand(CLI::App& app, int& exit_code) {
 
     const bool criteria = defined && e.motion_computed;
     const FeasibilityVerdict verdict = feasibilityVerdict(evaluator, gait.parameters, e);
-    std::cout << "evaluate: " << (defined ? "ok" : "undefined") << ", "
-              << (verdict.feasible ? "feasible" : "not feasible") << ", failed level "
-              << (verdict.failed_level < 0 ? std::string("none")
-                                           : std::to_string(verdict.failed_level))
+    std::string unmet;
+    for (const std::string& g : verdict.unmet_groups) unmet += (unmet.empty() ? "" : ", ") + g;
+    // One vocabulary with optimize and sweep: feasible, infeasible (some constraint unmet, the
+    // step computed), undefined (a level 0-4 constraint fails: no motion).
+    std::cout << "evaluate: "
+              << (!defined ? "undefined, failed level " + std::to_string(verdict.failed_level)
+                  : verdict.feasible ? std::string("feasible")
+                                     : "infeasible, unmet level " +
+                                           std::to_string(verdict.failed_level) + " (" + unmet +
+                                           ")")
               << ", C_Gamma " << (criteria ? shortNumber(e.C_Gamma) + " N^2 m s" : "n/a")
               << ", speed "
               << (zeroDynamicsComputed(evaluator, e) ? shortNumber(e.speed, "%.4g") + " m/s"
                                                      : std::string("n/a"))
-              << ", max violation " << shortNumber(maxDefinedViolation(e), "%.4g")
-              << ", between nodes (10x) "
+              << ", largest violation at the nodes " << shortNumber(maxDefinedViolation(e), "%.4g")
+              << ", between them (10x) "
               << (verdict.between_nodes.worst_group < 0
                       ? std::string("n/a")
                       : shortNumber(verdict.between_nodes.worst_scaled, "%.3g") + " scaled")
