@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <regex>
 #include <sstream>
 
 #include "gaitopt/io/json_writer.hpp"
@@ -30,6 +31,8 @@ const Range kFMin{0.0, 1e3, true, "kg m^2"};
 const Range kRate{0.0, 100.0, false, "rad/s"};
 const Range kNegativeRate{-100.0, 0.0, false, "rad/s"};
 const Range kAngle{0.0, 1.0, false, "rad"};
+// A margin on angle orderings (3.38), (3.40): a tenth of a radian is already a strong one.
+const Range kAngleMargin{0.0, 0.1, false, "rad"};
 const Range kReach{0.0, 1.0, false, "m^2"};
 const Range kKappa{0.0, 10.0, true, ""};
 const Range kSpeed{0.0, kMaxWalkingSpeed, false, "m/s"};
@@ -140,7 +143,17 @@ Parameterisation parseParameterisation(const YamlMap& doc, Landing landing) {
 GaitParameters parseGaitParameters(const YamlMap& m, const Parameterisation& par) {
   const std::vector<std::string> names = par.names();
   GaitParameters p(par.size());
-  for (int i = 0; i < par.size(); ++i) p(i) = m.number(names[i]);
+  // Angles (α, δ, θ of the configurations, not their slopes or rates) are radians: one beyond
+  // a turn is a gait file written in degrees.
+  static const std::regex angle(R"((alpha|delta[0-9]|theta[0-9])_.*)");
+  static const std::regex not_angle(R"(alphadot_.*|delta[0-9]s_.*)");
+  for (int i = 0; i < par.size(); ++i) {
+    p(i) = m.number(names[i]);
+    if (std::regex_match(names[i], angle) && !std::regex_match(names[i], not_angle) &&
+        std::abs(p(i)) > 2.0 * M_PI)
+      throw m.error(names[i], "an angle of " + m.text(names[i]) +
+                                  " rad, more than a turn: gait files hold radians (degrees?)");
+  }
   // Implicit requirements of the parametrisation (digest §3.5 [G]): a forward step and a
   // double support of positive duration (the DS α(t) cubic is singular at T_DS = 0).
   for (int i : {static_cast<int>(kStepLength), static_cast<int>(kTDS)}) {
@@ -177,7 +190,7 @@ GaitOptions parseGaitOptions(const YamlMap& m, ModelOptions& model_options) {
   if (!(o.ds_alphadot_max < 0.0)) {
     throw m.error("ds_alphadot_max", "must be < 0, got " + m.text("ds_alphadot_max"));
   }
-  o.angle_margin = numberInOr(m, "angle_margin", ranges::kAngle, o.angle_margin);
+  o.angle_margin = numberInOr(m, "angle_margin", ranges::kAngleMargin, o.angle_margin);
   o.ds_alpha_range_min =
       numberInOr(m, "ds_alpha_range_min", ranges::kAngle, o.ds_alpha_range_min);
   o.reach_margin = numberInOr(m, "reach_margin", ranges::kReach, o.reach_margin);

@@ -1,5 +1,7 @@
 #include "gaitopt/io/robot_file.hpp"
 
+#include <cmath>
+
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -113,6 +115,11 @@ std::pair<double, double> degreeRange(const YamlMap& m, const std::string& min_k
     throw m.error(min_key, "must be less than " + max_key + " (" + m.text(min_key) + " >= " +
                                m.text(max_key) + " deg)");
   }
+  // Radians typed under a key in degrees: both bounds within ±2π and a range of a few units
+  // is a joint that moves a few degrees, which no walking robot has.
+  if (std::abs(lo) <= 2.0 * M_PI && std::abs(hi) <= 2.0 * M_PI && hi - lo < 2.0 * M_PI)
+    throw m.error(min_key, "looks like radians (" + m.text(min_key) + " to " + m.text(max_key) +
+                               "): joint_limits_deg holds degrees, e.g. -260 to -110 for a hip");
   return {lo * kRadPerDeg, hi * kRadPerDeg};
 }
 

@@ -145,7 +145,7 @@ TEST_CASE("gaitYaml round-trips parameters and options bit for bit", "[gait_io]"
   o.f_min = 1e-7;
   o.alphadot_margin = 0.0;
   o.ds_alphadot_max = -1e-12;
-  o.angle_margin = 2.0 / 3.0;
+  o.angle_margin = 0.2 / 3.0;  // a round-trip test value within (0, 0.1]
   o.reach_margin = 1.5e-5;
   o.kappa_min = 0.3;
   o.joint_limit_margin = 0.01;
@@ -321,4 +321,14 @@ TEST_CASE("summary constraint groups: worst Defined value, counts and max_violat
   const std::string json = gaitopt::gaitSummaryJson(
       ev, g.parameters, e, [](gaitopt::JsonWriter& w) { w.key("solver").value("none"); });
   CHECK_THAT(json, Contains("\"solver\": \"none\"\n}"));
+}
+
+TEST_CASE("gait files in degrees and nonsense angle margins are refused", "[gait_io]") {
+  requireError(gaitWith({{5, "  delta1_iDS: -148.6"}}), "parameters.delta1_iDS", 5,
+               "an angle of -148.6 rad, more than a turn: gait files hold radians");
+  requireError(gaitWith({{6, "  theta3_iDS: 87.1"}}), "parameters.theta3_iDS", 6, "degrees?");
+  // Rates and slopes are not angles: a large one is the evaluator's to judge.
+  REQUIRE_NOTHROW(loadGaitFile(scratch().write(gaitWith({{16, "  delta1s_iSS: 12.0"}}))));
+  requireError(gaitWith({{24, "  angle_margin: 1.0"}}), "options.angle_margin", 24,
+               "must be in [0, 0.1] rad, got 1.0");
 }

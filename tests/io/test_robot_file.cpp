@@ -393,3 +393,15 @@ TEST_CASE("YamlMap: strings, booleans, optional values", "[robot_yaml]") {
   CHECK_FALSE(m.has("e"));
   CHECK_NOTHROW(m.rejectUnknownKeys());
 }
+
+TEST_CASE("joint_limits_deg given in radians is refused", "[robot_yaml]") {
+  requireError(robotWith({{25, "joint_limits_deg: {hip_min: -4.5, hip_max: -1.9, knee_min: -4.0, "
+                               "knee_max: -2.2}"}}),
+               "joint_limits_deg.hip_min", 25, "looks like radians (-4.5 to -1.9)");
+  // Degrees that happen to be small stay degrees when the range is a real joint's.
+  RobotParams r;
+  REQUIRE_NOTHROW(r = loadRobot(scratch().write(robotWith(
+                      {{25, "joint_limits_deg: {hip_min: -5, hip_max: 120, knee_min: -230, "
+                            "knee_max: -127}"}}))));
+  CHECK(r.limits.hip_min == Approx(-5.0 * kPi / 180.0));
+}
