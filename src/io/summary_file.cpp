@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include "gaitopt/gait/cost_of_transport.hpp"
 #include "gaitopt/gait/constraint_summary.hpp"
 #include "gaitopt/gait/feasibility.hpp"
 #include "gaitopt/gait/impact_landing.hpp"
@@ -139,6 +140,7 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
     w.key("C_E").value(e.C_E);
     w.key("W").value(e.W);
     w.key("C_frott").value(e.C_frott);
+    w.key("cost_of_transport").value(costOfTransport(ev.model(), e.C_E));
     w.endObject();
   } else {
     w.null();
@@ -228,7 +230,9 @@ void writeGaitSummaryMembers(JsonWriter& w, const GaitEvaluator& ev, const GaitP
 
   static constexpr std::pair<const char*, const char*> kUnits[] = {
       {"C_Gamma", "N^2 m s (integral of Gamma*^T Gamma* dt per metre walked)"},
-      {"C_E", "J/m"}, {"W", "J/m"}, {"C_frott", "J/m"}, {"speed", "m/s"}, {"step_length", "m"},
+      {"C_E", "J/m"}, {"W", "J/m"}, {"C_frott", "J/m"},
+      {"cost_of_transport", "1 (C_E / (m g): electrical energy per metre and newton of weight)"},
+      {"speed", "m/s"}, {"step_length", "m"},
       {"T_SS", "s"}, {"T_DS", "s"}, {"alphadot_fSS", "rad/s"},
       {"ds_switch_times", "s from the start of double support"},
       {"parameters", "rad, m, s; delta*s_* are d(delta)/d(alpha), alphadot_iSS rad/s"},

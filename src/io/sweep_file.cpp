@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "gaitopt/gait/cost_of_transport.hpp"
 #include "gaitopt/gait/constraint_summary.hpp"
 #include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/csv_table.hpp"
@@ -47,15 +48,16 @@ double checkSweepRow(const std::vector<std::string>& f, const std::string& where
     throw bad(0, "is not a speed in (0, " + speedText(kMaxWalkingSpeed) + "] m/s");
   if (!parseOptimizationStatus(f[1]))
     throw bad(1, "is not a status (optimal, infeasible, max_iter, failed)");
-  for (std::size_t c = 2; c <= 8; ++c) {  // criteria, step length, phase durations
+  for (std::size_t c = 2; c <= 9; ++c) {  // criteria, cost of transport, step, durations
     const std::optional<double> v = parseDecimal(f[c]);
-    if (!f[c].empty() && (!v || (c >= 7 && *v < 0.0)))
-      throw bad(c, c >= 7 ? "is not a duration >= 0 s (or empty)" : "is not a number (or empty)");
+    if (!f[c].empty() && (!v || (c >= 8 && *v < 0.0)))
+      throw bad(c, c >= 8 ? "is not a duration >= 0 s (or empty)" : "is not a number (or empty)");
   }
-  if (f[9].empty() || f[9].size() > 9 || f[9].find_first_not_of("0123456789") != std::string::npos)
-    throw bad(9, "is not a non-negative integer");
-  const std::optional<double> wall = parseDecimal(f[10]);
-  if (!wall || *wall < 0.0) throw bad(10, "is not a duration >= 0 s");
+  if (f[10].empty() || f[10].size() > 9 ||
+      f[10].find_first_not_of("0123456789") != std::string::npos)
+    throw bad(10, "is not a non-negative integer");
+  const std::optional<double> wall = parseDecimal(f[11]);
+  if (!wall || *wall < 0.0) throw bad(11, "is not a duration >= 0 s");
   return *speed;
 }
 
@@ -111,7 +113,7 @@ Shard parseShard(const std::string& text) {
 }
 
 const char* const kSweepCsvHeader =
-    "speed,status,C_Gamma,C_E,W,C_frott,step_length,T_SS,T_DS,iterations,wall_time_s";
+    "speed,status,C_Gamma,C_E,W,C_frott,CoT,step_length,T_SS,T_DS,iterations,wall_time_s";
 
 std::string sweepCsvRow(const GaitEvaluator& ev, const SweepPoint& p) {
   const GaitEvaluation<double>& e = p.result.evaluation;
@@ -121,6 +123,7 @@ std::string sweepCsvRow(const GaitEvaluator& ev, const SweepPoint& p) {
   row.number(p.speed).text(optimizationStatusName(p.result.status));
   row.number(field(criteria, e.C_Gamma)).number(field(criteria, e.C_E));
   row.number(field(criteria, e.W)).number(field(criteria, e.C_frott));
+  row.number(field(criteria, costOfTransport(ev.model(), e.C_E)));
   row.number(field(true, p.result.parameters[kStepLength])).number(field(timing, e.T_SS));
   row.number(field(true, p.result.parameters[kTDS])).integer(p.total_iterations);
   return row.number(p.total_wall_time_s).str();

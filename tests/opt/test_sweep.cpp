@@ -188,9 +188,9 @@ TEST_CASE("sweepSpeeds: two threaded chains are deterministic and equal the two 
 
 TEST_CASE("mergeSweepCsvs sorts rows and rejects duplicates and foreign headers", "[sweep]") {
   const std::string h = std::string(gaitopt::kSweepCsvHeader) + "\n";
-  const std::string a = h + "0.5,optimal,1,2,3,4,0.3,0.5,0.04,10,0.1\n";
-  const std::string b = h + "0.40000000000000002,optimal,1,2,3,4,0.3,0.5,0.04,10,0.1\n" +
-                        "0.6,infeasible,,,,,0.3,,0.04,10,0.1\n";
+  const std::string a = h + "0.5,optimal,1,2,3,4,0.005,0.3,0.5,0.04,10,0.1\n";
+  const std::string b = h + "0.40000000000000002,optimal,1,2,3,4,0.005,0.3,0.5,0.04,10,0.1\n" +
+                        "0.6,infeasible,,,,,,0.3,,0.04,10,0.1\n";
   const std::vector<std::string> merged = lines(gaitopt::mergeSweepCsvs({a, b}, {"a", "b"}));
   REQUIRE(merged.size() == 4);
   CHECK(merged[0] == gaitopt::kSweepCsvHeader);
