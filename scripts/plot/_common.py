@@ -57,6 +57,9 @@ def step_run(kind, run_dir):
     """(summary dict, trajectory columns) of a step run directory, or exit 2 with the reason."""
     summary_path = os.path.join(run_dir, "summary.json")
     trajectory_path = os.path.join(run_dir, "trajectory.csv")
+    if os.path.exists(os.path.join(run_dir, "tracking.csv")):
+        fail(kind, f"{run_dir}: a gaitopt simulate directory (tracking.csv), not a step run; "
+                   "use 'gaitopt plot simulation'")
     if not os.path.exists(summary_path):
         if os.path.exists(os.path.join(run_dir, "sweep.csv")):
             fail(kind, f"{run_dir}: a sweep directory (sweep.csv), not a step run; '{kind}' draws one "
@@ -76,6 +79,26 @@ def step_run(kind, run_dir):
     return summary, read_csv(kind, trajectory_path)
 
 
+def simulation_run(kind, run_dir):
+    """(summary, tracking, steps, trajectory) of a gaitopt simulate directory, or exit 2."""
+    tracking_path = os.path.join(run_dir, "tracking.csv")
+    if not os.path.exists(tracking_path):
+        if os.path.exists(os.path.join(run_dir, "sweep.csv")):
+            fail(kind, f"{run_dir}: a sweep directory (sweep.csv), not a simulation")
+        if os.path.exists(os.path.join(run_dir, "summary.json")):
+            fail(kind, f"{run_dir}: a step run directory (summary.json), not a simulation; "
+                       f"'{kind}' needs the directory written by gaitopt simulate (tracking.csv)")
+        fail(kind, f"{run_dir}: no tracking.csv: not a gaitopt simulate directory")
+    with open(os.path.join(run_dir, "summary.json")) as f:
+        try:
+            summary = json.load(f)
+        except json.JSONDecodeError as e:
+            fail(kind, f"{run_dir}/summary.json: not valid JSON ({e})")
+    return (summary, read_csv(kind, tracking_path),
+            read_csv(kind, os.path.join(run_dir, "steps.csv")),
+            read_csv(kind, os.path.join(run_dir, "trajectory.csv")))
+
+
 def sweep_run(kind, run_dir):
     """The sweep.csv rows of a sweep directory, sorted by speed, or exit 2 with the reason."""
     path = os.path.join(run_dir, "sweep.csv")
@@ -89,9 +112,10 @@ def sweep_run(kind, run_dir):
 
 def read_csv(kind, path, key=None):
     """Columns of a gaitopt CSV as a dict name -> numpy array (numbers; empty fields are NaN;
-    non-numeric columns such as phase and status stay strings)."""
+    non-numeric columns such as phase and status stay strings); `#` lines (the metadata of an
+    export or a simulated trajectory) are skipped."""
     with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
+        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
     if not rows:
         fail(kind, f"{path}: no data rows")
     if key is not None:

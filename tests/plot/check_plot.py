@@ -73,6 +73,14 @@ def inputs(binary, kind, scratch):
                  "--robot", os.path.join(ROOT, "configs", "robot", "human_subject01.yaml"),
                  "--out", os.path.join(scratch, "walk.csv"), "--report", report)
         return report, STEP_RUN, "a directory"
+    if kind == "simulation":  # 3 closed-loop steps of the shipped gait; a step run is refused
+        directory = os.path.join(scratch, "simulation")
+        generate(binary, "simulate", "--gait", GAIT, "--steps", "3", "--out", directory)
+        result = run(binary, "torques", directory, "--out", os.path.join(scratch, "t.png"))
+        check(result.returncode == 2 and "a gaitopt simulate directory (tracking.csv), not a step "
+              "run; use 'gaitopt plot simulation'" in result.stderr,
+              f"torques of a simulation: {result.returncode} {result.stderr!r}")
+        return directory, STEP_RUN, "a step run directory"
     return STEP_RUN, SWEEP_RUN, "a sweep directory"
 
 
