@@ -1,5 +1,6 @@
 // `gaitopt stability`: Poincaré analysis of the closed-loop gait (all DOF, and the 1-D map of
 // the zero dynamics' α̇ at SS start).
+#include <chrono>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -15,6 +16,7 @@ namespace {
 
 struct StabilityArgs {
   std::string gait, out, jacobian = "sensitivity", ds_control = "cubic";
+  bool quiet = false;
   StabilityRequest request;
 };
 
@@ -62,6 +64,7 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--ds-points", a->request.ds_points, "Points of the DS convergence-zone study")
       ->capture_default_str()
       ->check(integerWithin(2, 10001));
+  cmd->add_flag("--quiet", a->quiet, "No progress lines");
   cmd->callback([a, &exit_code]() {
     const GaitFile gait = loadGaitFile(a->gait);
     OutputTransaction output({{"--gait", a->gait}});
@@ -79,6 +82,14 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
     req.jacobian = a->jacobian == "fd" ? PoincareJacobianMethod::FiniteDifference
                                        : PoincareJacobianMethod::Sensitivity;
     req.ds_control = dsAlphaControlOf(a->ds_control);
+    const auto start = std::chrono::steady_clock::now();
+    if (!a->quiet)
+      req.on_stage = [start](const std::string& stage, int k, int n) {
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::cout << "stability [" << k << "/" << n << "] " << stage << "  "
+                  << elapsedAndRemaining(elapsed, 0, n) << "\n" << std::flush;
+      };
     const StabilityStudy s =
         studyStability(e, gait.robot, gait.options, gait.model_options, req);
     writeStabilityReport(dir, s, req, a->gait);

@@ -82,18 +82,25 @@ StabilityStudy studyStability(const GaitEvaluation<double>& e, const RobotParams
   const TouchdownMap td =
       gaitTouchdown(options, impact_landing ? "auto" : "none", options.friction_coefficient);
   const StepMap P = walkingStepMap(e, model, model, analysis, td);
+  int stage = 0;
+  const auto starting = [&](const char* name) {
+    if (request.on_stage) request.on_stage(name, ++stage, kStabilityStages);
+  };
   StabilityStudy s{};
   s.fixed_point = walkingCycleState(e.motion);
   const Eigen::VectorXd h = Eigen::VectorXd::Constant(10, request.fd_step);
+  starting("Poincare linearisation");
   s.linearisation =
       request.jacobian == PoincareJacobianMethod::FiniteDifference
           ? linearisePoincare(P, s.fixed_point, h)
           : linearisePoincareBySensitivity(e, model, model, analysis, s.fixed_point, td);
+  starting("power iteration");
   s.power_estimate =
       powerIteration(P, s.fixed_point, h, request.power_iterations, s.power_vector);
   s.dominant_modulus = std::abs(s.linearisation.eigenvalues(0));
   s.stable = s.dominant_modulus < 1.0;
   s.stable_cycle = s.stable && s.linearisation.fixed_point_residual < 1e-6;
+  starting("zero-dynamics map");
   ZeroDynamicsRequest zr;
   zr.range = request.map_range;
   zr.points = request.map_points;
@@ -102,12 +109,15 @@ StabilityStudy studyStability(const GaitEvaluation<double>& e, const RobotParams
   s.zero_dynamics_max_steps = zr.max_steps;
   s.has_double_support = options.parameterisation.hasDoubleSupport();
   s.ds_limits = dsLimitsOf(options);
+  starting("double-support convergence zone");
   if (s.has_double_support)
     s.ds_zone = studyDsZone(model, e.motion, s.ds_limits,
                             dsZoneGrid(e.motion, request.ds_range, request.ds_points));
+  starting("torque saturation on the cycle");
   s.saturated_samples_on_cycle =
       saturatedOnCycle(e, model, req, s.fixed_point,
                        gaitTouchdown(options, "auto", options.friction_coefficient));
+  starting("margins: push, payload, slope");
   s.margins = stabilityMargins(e, robot, options, model_options, model, req, request.margin_steps);
   return s;
 }

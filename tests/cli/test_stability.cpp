@@ -19,6 +19,10 @@ TEST_CASE("gaitopt stability CLI writes the analysis and exits 0 for a stable cy
                             quoted(out));
   INFO(run.err);
   REQUIRE(run.exit_code == 0);
+  // A progress line as each of the six stages starts, before the result line.
+  for (int k = 1; k <= 6; ++k)
+    CHECK_THAT(run.out, Catch::Matchers::Contains("stability [" + std::to_string(k) + "/6] "));
+  CHECK_THAT(run.out, Catch::Matchers::Contains("[6/6] margins: push, payload, slope  elapsed"));
   CHECK_THAT(readFile(out + "/stability.json"), Catch::Matchers::Contains("\"stable\": true"));
   const std::string map = readFile(out + "/zero_dynamics_map.csv");
   const std::string jac = readFile(out + "/jacobian.csv");

@@ -5,6 +5,7 @@
 // dynamics' α̇ at SS start (§4.2.2), the DS convergence zone of the time-optimal law (Fig. 4.5)
 // and the robustness margins (push, payload, slope).
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 
 #include "gaitopt/sim/ds_convergence_zone.hpp"
@@ -29,7 +30,11 @@ struct StabilityRequest {
   double ds_range = 0.5;    // relative α̇_fDS range of the DS convergence-zone study (±)
   int ds_points = 41;
   int margin_steps = 5;     // steps walked after a push, on a slope or with a payload
+  // Called as each of the kStabilityStages stages starts (k = 1…n), for progress reports.
+  std::function<void(const std::string& stage, int k, int n)> on_stage;
 };
+
+constexpr int kStabilityStages = 6;
 
 struct StabilityMargins {
   MarginRequest request;
