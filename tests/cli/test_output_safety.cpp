@@ -265,4 +265,18 @@ TEST_CASE("output safety: a killed run leaves the old or the new result, never a
   const std::string diagnose = "diagnose --quiet --robot " + robot + " --data data.csv";
   requireOldOrNew(diagnose + " --effects viscous", diagnose,
                   {"0.1", "0.4", "0.7", "0.8", "0.9", "1.0", "1.1", "1.3", "2"});
+  // stability: 4 files, about 3 s with the small studies below.
+  const std::string stability = "stability --quiet --map-range 0.01 --margin-steps 1 "
+                                "--ds-points 3 --gait " + gait;
+  // (The sanitizer run, ten times slower, kills them before they publish: fewer delays.)
+  const bool light = gaitopt::test::lightTests();
+  requireOldOrNew(stability + " --map-points 3", stability + " --map-points 5",
+                  light ? std::vector<std::string>{"1", "3"}
+                        : std::vector<std::string>{"0.3", "1", "2", "2.5", "3", "3.5"});
+  // impact-map: 2 files, about 3 s for 10^6 grid points.
+  const std::string map = "impact-map --q=-0.367464,-3.018514,-3.135493,0.606892,-3.030679";
+  requireOldOrNew(map + " --mu-range 0:1.5:10 --theta-range -180:0:10",
+                  map + " --mu-range 0:1.5:1000 --theta-range -180:0:1000",
+                  light ? std::vector<std::string>{"1", "3"}
+                        : std::vector<std::string>{"0.2", "1", "2", "2.5", "3", "3.5"});
 }
