@@ -5,6 +5,11 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <cstdio>
+
+#include "gaitopt/ident/admissible_range.hpp"
+#include "gaitopt/ident/structured_residual.hpp"
 
 namespace gaitopt::diagnosis {
 
@@ -80,6 +85,39 @@ Fit linearisedFit(const Context& ctx, const Linearisation& lin, int c,
 
 bool sameCandidate(const Effect& a, const Effect& b) { return a.kind == b.kind && a.joint == b.joint; }
 
+// An encoder offset smaller than the angle resolution of the data (3 × the angle scatter: about
+// one count of a quantising encoder) is what the fit of a nonlinear sensor effect on the same
+// channels leaves (e.g. a backlash, whose tanh of the noisy torque is biased), not a cause.
+std::string unresolved(const Effect& e, const PreparedData& p) {
+  const double resolution = 3.0 * angleScatter(p);
+  if (e.kind != EffectKind::EncoderOffset || std::abs(e.value) >= resolution) return "";
+  char b[160];
+  std::snprintf(b, sizeof b, "%s %.2g rad is below the angle resolution of the data, %.2g rad",
+                effectLabel(e).c_str(), e.value, resolution);
+  return b;
+}
+
+// Reweights with the noise levels the candidate's model leaves (the current model's are
+// conservative where the effect acts: sel.sigma), refits it by Gauss–Newton and rescores it
+// (`s` updated); true when it is significant, better on the held-out steps and of practical gain.
+bool passesTests(const Context& ctx, const Linearisation& lin, Selection& sel, Scored& s, double n,
+                 const DiagnoseOptions& o) {
+  const std::size_t rows = ctx.fit.prepared.data.size();
+  sel.sigma = channelSigma(ctx.fit, fitMatrix(rows, ctx.fit.entries, s.fit.r.fit));
+  const Eigen::VectorXd rb = weightedVector(ctx.fit.entries, sel.model.r.fit, sel.sigma);
+  const Eigen::VectorXd hb = weightedVector(ctx.held.entries, sel.model.r.held, sel.sigma);
+  const Fit refit = std::all_of(s.which.begin(), s.which.end(),
+                                [&](int c) { return effectInfo(lin.candidates[c].kind).linear; })
+                        ? chordFit(ctx, lin, s.which, sel.sigma, 1)
+                        : gaussNewton(ctx, s.fit, sel.sigma, 3);
+  const std::vector<int> which = s.which;
+  s = score(ctx, refit, sel.sigma, rb.squaredNorm(), n, rb);
+  s.which = which;
+  return s.result.p_value < o.significance &&
+         s.result.holdout_rms < std::sqrt(hb.squaredNorm() / hb.size()) &&
+         bestChannelGain(ctx.held.entries, sel.model.r.held, s.fit.r.held) >= o.min_channel_gain;
+}
+
 }  // namespace
 
 std::vector<Effect> candidateEffects(const DiagnoseOptions& o, const MeasuredData& d) {
@@ -103,7 +141,7 @@ std::vector<Effect> candidateEffects(const DiagnoseOptions& o, const MeasuredDat
 Selection selectCauses(const Context& ctx, const Linearisation& lin,
                        const std::array<double, kNumChannels>& sigma, const DiagnoseOptions& o,
                        const StageProgress& progress) {
-  Selection sel{{}, {{}, lin.r0, {}}, sigma, {}, {}};
+  Selection sel{{}, {{}, lin.r0, {}}, sigma, {}, {}, {}};
   const std::size_t rows = ctx.fit.prepared.data.size();
   const double n = static_cast<double>(ctx.fit.entries.size());
   std::vector<int> confounded;
@@ -139,37 +177,48 @@ Selection selectCauses(const Context& ctx, const Linearisation& lin,
                   rb)
                 .result);
     }
-    const auto best = std::min_element(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) {
-      return a.result.bic < b.result.bic;
-    });
-    // The class of the best: candidates statistically indistinguishable from it.
-    Cause cause{best->result.effect, 0.0, 1.0, {}};
+    std::vector<int> by_bic(refined);
+    std::iota(by_bic.begin(), by_bic.end(), 0);
+    std::sort(by_bic.begin(), by_bic.end(),
+              [&](int a, int b) { return scored[a].result.bic < scored[b].result.bic; });
+    const Scored* lowest = &scored[by_bic[0]];
+    // The class of the lowest BIC: candidates statistically indistinguishable from it.
+    Cause cause{lowest->result.effect, 0.0, 1.0, {}};
     const double threshold = chi2Quantile1(o.significance);
     std::vector<int> cls;
     for (const Scored& s : scored)
-      if (&s != &*best && s.result.p_value < o.significance &&
-          s.result.bic - best->result.bic < threshold) {
+      if (&s != lowest && s.result.p_value < o.significance &&
+          s.result.bic - lowest->result.bic < threshold) {
         cause.confounded_with.push_back(effectLabel(s.result.effect));
         for (int c = 0; c < static_cast<int>(lin.candidates.size()); ++c)
           if (sameCandidate(lin.candidates[c], s.result.effect)) cls.push_back(c);
       }
-    // Reweight with the noise levels the best model leaves (the current model's are
-    // conservative where the effect acts) and refit it by Gauss–Newton before testing.
-    sel.sigma = channelSigma(ctx.fit, fitMatrix(rows, ctx.fit.entries, best->fit.r.fit));
-    const Eigen::VectorXd rb2 = weightedVector(ctx.fit.entries, sel.model.r.fit, sel.sigma);
-    const Eigen::VectorXd hb2 = weightedVector(ctx.held.entries, sel.model.r.held, sel.sigma);
-    const Fit refit = std::all_of(best->which.begin(), best->which.end(),
-                                  [&](int c) { return effectInfo(lin.candidates[c].kind).linear; })
-                          ? chordFit(ctx, lin, best->which, sel.sigma, 1)
-                          : gaussNewton(ctx, best->fit, sel.sigma, 3);
-    const std::vector<int> best_which = best->which;
-    *best = score(ctx, refit, sel.sigma, rb2.squaredNorm(), n, rb2);
-    best->which = best_which;
-    const CandidateResult& br = best->result;
-    if (!(br.p_value < o.significance &&
-          br.holdout_rms < std::sqrt(hb2.squaredNorm() / hb2.size()) &&
-          bestChannelGain(ctx.held.entries, sel.model.r.held, best->fit.r.held) >= o.min_channel_gain)) {
+    // By increasing BIC, the first refined candidate that passes the tests is the round's cause:
+    // an effect seen on a channel of few entries (a slope in the double-support closure) can rank
+    // behind a fit of the noise of the many single-support entries.
+    const Scored* best = nullptr;
+    for (int i : by_bic) {
+      if (passesTests(ctx, lin, sel, scored[i], n, o)) {
+        best = &scored[i];
+        break;
+      }
+    }
+    if (!best) {
       progress("round " + std::to_string(sel.accepted.size() + 1) + ": no further cause", progress.stages() - 1);
+      break;
+    }
+    if (best != lowest) {
+      cause.confounded_with.clear();
+      cls.clear();
+    }
+    const CandidateResult& br = best->result;
+    const std::string outside = unresolved(br.effect, ctx.fit.prepared) + firstInadmissible(br.all, ctx.fit.nominal);
+    if (!outside.empty()) {  // the data carry something the library does not describe
+      sel.rejected.push_back({br.effect, br.p_value, "best library fit: " + outside,
+                              actingChannels(ctx.held.entries, sel.model.r.held, best->fit.r.held,
+                                             o.min_channel_gain / 100.0)});
+      progress("round " + std::to_string(sel.accepted.size() + 1) + ": best fit not admissible",
+               progress.stages() - 1);
       break;
     }
     cause.effect = br.effect;
@@ -190,6 +239,52 @@ Selection selectCauses(const Context& ctx, const Linearisation& lin,
   }
   for (std::size_t i = 0; i < sel.causes.size(); ++i) sel.causes[i].effect.value = sel.model.effects[i].value;
   return sel;
+}
+
+std::string channelList(const std::vector<int>& channels) {
+  std::string out;
+  for (int c : channels) out += (out.empty() ? "" : ", ") + std::string(kChannelNames[c]);
+  return out;
+}
+
+void dropOverreaching(const Context& ctx, const Linearisation& lin, Selection& sel,
+                      const DiagnoseOptions& o) {
+  while (!sel.causes.empty()) {
+    std::array<bool, kNumChannels> structured{};
+    for (const ChannelTest& t : testChannels(ctx, sel.model.r, o)) structured[t.channel] = t.structured;
+    std::vector<int> keep;
+    for (std::size_t i = 0; i < sel.causes.size(); ++i) {
+      std::vector<Effect> others = sel.model.effects;
+      others.erase(others.begin() + i);
+      const std::vector<int> channels = actingChannels(ctx.held.entries, ctx.evaluate(others).held,
+                                                       sel.model.r.held, o.min_channel_gain / 100.0);
+      std::vector<int> left;
+      for (int c : channels)
+        if (structured[c]) left.push_back(c);
+      if (left.empty()) {
+        keep.push_back(static_cast<int>(i));
+        continue;
+      }
+      sel.rejected.push_back({sel.causes[i].effect, sel.causes[i].p_value,
+                              effectLabel(sel.causes[i].effect) +
+                                  " reduces the residual but leaves a significant structured "
+                                  "residual on " + channelList(left),
+                              channels});
+    }
+    if (keep.size() == sel.causes.size()) return;
+    std::vector<int> accepted;
+    std::vector<Cause> causes;
+    for (int i : keep) {
+      accepted.push_back(sel.accepted[i]);
+      causes.push_back(sel.causes[i]);
+    }
+    sel.model = accepted.empty()
+                    ? Fit{{}, lin.r0, {}}
+                    : gaussNewton(ctx, chordFit(ctx, lin, accepted, sel.sigma, kIterations), sel.sigma, 3);
+    for (std::size_t i = 0; i < causes.size(); ++i) causes[i].effect.value = sel.model.effects[i].value;
+    sel.accepted = accepted;
+    sel.causes = causes;
+  }
 }
 
 }  // namespace gaitopt::diagnosis

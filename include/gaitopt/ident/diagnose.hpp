@@ -52,6 +52,9 @@ struct DiagnoseOptions {
   // RMS over all channels by this much [%]: a few-% gain is what such a flexible fit gets from
   // the smoothing bias of a large named effect (a 4 cm foot offset gave 1.7 %).
   double min_inertial_gain = 5.0;
+  // A channel's held-out residual is structured (not explained) when its cross-step prediction
+  // (ident/structured_residual.hpp) is significant and removes at least this much of its RMS [%].
+  double min_unexplained_gain = 20.0;
   int max_causes = 3;
   double edge_trim = 0.03;         // [s]
   PreprocessOptions preprocess;
@@ -93,11 +96,36 @@ struct Cause {
   std::vector<std::string> confounded_with;
 };
 
+// What an unexplained residual follows best (ident/structured_residual.hpp).
+enum class Signature { JointAngle, Velocity, Acceleration, Torque, TorqueShift, None };
+const char* signatureName(Signature s);  // "joint angle", …, "none"
+
+// A library candidate that reduces a residual but is not its cause: its fitted value is outside
+// its physical range (ident/admissible_range.hpp), or it leaves a significant structured residual
+// on a channel it acts on.
+struct PartialFit {
+  Effect effect;
+  double p_value = 1.0;
+  std::string reason;
+  std::vector<int> channels;  // the channels it acts on
+};
+
+// A channel whose held-out residual, after the causes, is still significant and structured.
+struct Unexplained {
+  int channel = 0;
+  int joint = kNoJoint;  // the physical joint of a joint-torque channel
+  double heldout_rms = 0.0, noise_rms = 0.0, p_value = 1.0;
+  Signature signature = Signature::None;
+  std::vector<PartialFit> partial_fits;  // candidates acting on this channel that are not causes
+};
+
 struct Diagnosis {
   std::vector<char> holdout_rows, fit_rows;
   ChannelReport nominal_all, nominal, extended;  // nominal_all: every step; others: held out
   std::vector<CandidateResult> candidates;       // first round, every candidate
   std::vector<Cause> causes;
+  std::vector<Unexplained> unexplained;  // by channel
+  std::vector<PartialFit> partial_fits;  // every candidate rejected as a cause
   RobotParams extended_robot;
   ResidualMatrix nominal_residuals, extended_residuals;  // every sample
   std::array<double, kNumChannels> rms_reduction_pct{};
