@@ -105,6 +105,21 @@ Outcome outcome(const Diagnosis& d, const Truth& t) {
   return flagged ? kFlagged : kSilent;
 }
 
+// One line per case that is not `right`: what it was and what the diagnosis said.
+void explain(Outcome out, const std::string& truth, const Diagnosis& d) {
+  if (out == kRight) return;
+  std::printf("  %s (%s):", truth.c_str(), kOutcomeNames[out]);
+  for (const Cause& c : d.causes) std::printf(" cause %s=%.3g", effectLabel(c.effect).c_str(), c.effect.value);
+  for (const Unexplained& u : d.unexplained) std::printf(" unexplained %s", kChannelNames[u.channel]);
+  std::printf("\n");
+}
+
+std::string label(const std::vector<Effect>& effects) {
+  std::string s;
+  for (const Effect& e : effects) s += (s.empty() ? "" : " + ") + effectLabel(e) + "=" + std::to_string(e.value);
+  return s.empty() ? "null" : s;
+}
+
 // A change of the TRUE robot's link inertial parameters that no named effect reproduces.
 RobotParams inertialTruth(RobotParams r, std::mt19937_64& rng) {
   const auto u = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
@@ -189,7 +204,9 @@ void runProfile(Bench& b, int n, std::vector<std::pair<std::string, EffectRow>>*
       std::mt19937_64 rng(10000 * (k + 2) + i);
       const Effect truth = randomEffect(kind, rng, low);
       const Diagnosis d = b.run(b.g.robot, {truth}, b.options(777 + i));
-      ++m.n[outcome(d, {{truth}})];
+      const Outcome out = outcome(d, {{truth}});
+      ++m.n[out];
+      explain(out, label({truth}), d);
       ++row.cases;
       row.unexplained += !d.unexplained.empty();
       if (d.causes.empty() || effectLabel(d.causes[0].effect) != effectLabel(truth)) continue;
@@ -209,23 +226,37 @@ void runProfile(Bench& b, int n, std::vector<std::pair<std::string, EffectRow>>*
     const int a = static_cast<int>(rng() % 12), c = (a + 1 + static_cast<int>(rng() % 11)) % 12;
     const Effect ea = randomEffect(static_cast<EffectKind>(a), rng, low);
     const Effect eb = randomEffect(static_cast<EffectKind>(c), rng, low);
-    ++pairs.n[outcome(b.run(b.g.robot, {ea, eb}, b.options(6000 + i)), {{ea, eb}})];
+    const auto pair = [&](const Effect& x, const Effect& y, std::uint64_t seed) {
+      const Diagnosis d = b.run(b.g.robot, {x, y}, b.options(seed));
+      const Outcome out = outcome(d, {{x, y}});
+      ++pairs.n[out];
+      explain(out, label({x, y}), d);
+    };
+    pair(ea, eb, 6000 + i);
     for (const auto& kinds : {std::make_pair(EffectKind::Coulomb, EffectKind::Viscous),
                               std::make_pair(EffectKind::EncoderOffset, EffectKind::Backlash)}) {
       Effect x = randomEffect(kinds.first, rng, low), y = randomEffect(kinds.second, rng, low);
       x.joint = y.joint = static_cast<int>(rng() % 4);
-      ++pairs.n[outcome(b.run(b.g.robot, {x, y}, b.options(6500 + i)), {{x, y}})];
+      pair(x, y, 6500 + i);
     }
   }
   pairs.print(p, "pairs (random, same joint)");
-  for (int i = 0; i < 2 * n; ++i) ++nulls.n[outcome(b.run(b.g.robot, {}, b.options(5000 + i)), {})];
+  for (int i = 0; i < 2 * n; ++i) {
+    const Diagnosis d = b.run(b.g.robot, {}, b.options(5000 + i));
+    const Outcome out = outcome(d, {});
+    ++nulls.n[out];
+    explain(out, "null", d);
+  }
   nulls.print(p, "null");
   for (int i = 0; i < n; ++i) {
     std::mt19937_64 rng(70000 + i);
     const RobotParams truth = inertialTruth(b.g.robot, rng);
     Truth t;
     t.inertial = true;
-    ++inertials.n[outcome(b.run(truth, {}, b.options(8000 + i)), t)];
+    const Diagnosis d = b.run(truth, {}, b.options(8000 + i));
+    const Outcome out = outcome(d, t);
+    ++inertials.n[out];
+    explain(out, "inertial", d);
   }
   inertials.print(p, "inertial");
   for (int k = 0; k < kNumUnmodelledKinds; ++k) {
@@ -240,13 +271,8 @@ void runProfile(Bench& b, int n, std::vector<std::pair<std::string, EffectRow>>*
       const Diagnosis d = b.run(b.g.robot, {}, o);
       const Outcome out = outcome(d, t);
       ++m.n[out];
-      if (out != kRight) {
-        std::printf("  %s@%s=%g (channel %s):", unmodelledName(u[0].kind), kPhysicalJointNames[u[0].joint],
-                    u[0].value, kChannelNames[t.channel]);
-        for (const Cause& c : d.causes) std::printf(" cause %s", effectLabel(c.effect).c_str());
-        for (const Unexplained& x : d.unexplained) std::printf(" unexplained %s", kChannelNames[x.channel]);
-        std::printf("\n");
-      }
+      explain(out, std::string(unmodelledName(u[0].kind)) + "@" + kPhysicalJointNames[u[0].joint] + "=" +
+                       std::to_string(u[0].value) + ", channel " + kChannelNames[t.channel], d);
     }
     m.print(p, unmodelledName(static_cast<UnmodelledKind>(k)));
     unmodelled.add(m);

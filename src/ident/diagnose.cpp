@@ -76,8 +76,9 @@ std::vector<char> holdoutRows(const MeasuredData& data, int holdout, int shift, 
   return rows;
 }
 
-// The `inertial` cause, like a named one, must leave no structured residual on the channels it
-// acts on; otherwise it is a partial fit and the named causes of `sel` are the model.
+// The `inertial` cause, like a named one, must be admissible — its physically consistent fit
+// inside the consistent set, no constraint binding — and leave no structured residual on the
+// channels it acts on; otherwise it is a partial fit and the named causes of `sel` are the model.
 void dropOverreachingInertial(const Context& ctx, const Selection& sel, const DiagnoseOptions& o,
                               Diagnosis& dg) {
   if (!dg.inertial.accepted) return;
@@ -85,13 +86,18 @@ void dropOverreachingInertial(const Context& ctx, const Selection& sel, const Di
   const std::vector<int> channels =
       actingChannels(ctx.held.entries, sel.model.r.held, ext.held, o.min_channel_gain / 100.0);
   std::vector<int> left;
-  for (const ChannelTest& t : testChannels(ctx, ext, o))
+  for (const ChannelTest& t : testChannels(ctx, ext, o, overreachThreshold(o)))
     if (t.structured && std::find(channels.begin(), channels.end(), t.channel) != channels.end())
       left.push_back(t.channel);
-  if (left.empty()) return;
+  std::string binding;
+  for (const std::string& a : dg.inertial.active) binding += (binding.empty() ? "" : ", ") + a;
+  if (left.empty() && binding.empty()) return;
   dg.partial_fits.push_back({dg.causes.back().effect, dg.inertial.p_value,
-                             "the inertial parameters reduce the residual but leave a significant "
-                             "structured residual on " + channelList(left),
+                             binding.empty()
+                                 ? "the inertial parameters reduce the residual but leave a "
+                                   "significant structured residual on " + channelList(left)
+                                 : "best inertial fit: on the boundary of physical consistency (" +
+                                       binding + " binding)",
                              channels});
   dg.inertial.accepted = false;
   dg.causes = sel.causes;
@@ -103,7 +109,7 @@ void dropOverreachingInertial(const Context& ctx, const Selection& sel, const Di
 std::vector<Unexplained> unexplained(const Context& ctx, const Evaluation& r, const DiagnoseOptions& o,
                                      const std::vector<PartialFit>& partial) {
   std::vector<Unexplained> out;
-  for (const ChannelTest& t : testChannels(ctx, r, o)) {
+  for (const ChannelTest& t : testChannels(ctx, r, o, unexplainedThreshold(o))) {
     if (!t.structured) continue;
     Unexplained u;
     u.channel = t.channel;

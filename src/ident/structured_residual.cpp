@@ -44,8 +44,8 @@ struct SignatureData {
 
   bool available(int signal) const { return signal < 3 || has_torque; }
 
-  // The raw measurement noise of each channel: the RMS scatter of the measured signal about its
-  // smoothed version — torque of the joint, reaction component; for the channels computed from
+  // The raw measurement noise of each channel: the robust scatter of the measured signal's
+  // second differences — torque of the joint, reaction component; for the channels computed from
   // the angles alone, the angle scatter times the leg length (rear-foot height) or times the
   // robot's weight and leg length (alpha row, the moment of that angle error).
   std::array<double, kNumChannels> floor{};
@@ -57,12 +57,13 @@ struct SignatureData {
     for (double m : robot.mass) mass += m;
     floor[kAlphaRow] = angle * mass * robot.gravity * leg;
     floor[kFoot2z] = angle * leg;
+    // White noise of σ gives second differences of σ √6; a signal sampled at 500 Hz hardly any.
     const auto scatter = [&](const std::vector<Vec4>& x, int k) {
-      std::vector<double> v(d.size());
-      for (std::size_t i = 0; i < d.size(); ++i) v[i] = x[i](k);
-      const SmoothedSignal s = p.differentiator.apply(v);
-      for (std::size_t i = 0; i < d.size(); ++i) v[i] -= s.value[i];
-      return robustScatter(v);
+      std::vector<double> v;
+      for (const Segment& seg : p.segments)
+        for (std::size_t i = seg.begin + 1; i + 1 < seg.end; ++i)
+          v.push_back(x[i + 1](k) - 2.0 * x[i](k) + x[i - 1](k));
+      return robustScatter(v) / std::sqrt(6.0);
     };
     if (d.has_torque) {
       double torque = 0.0;  // one level for the four joints: the motors' sensors are alike
@@ -162,18 +163,40 @@ std::pair<Eigen::MatrixXd, Eigen::MatrixXd> phaseColumns(const SignatureData& sd
   return {hats(ctx.fit, fr), hats(ctx.held, hr)};
 }
 
+// RMS of the measured signal of a torque or reaction channel on `pb`'s entries of `r` (0 for
+// the channels the model predicts as zero: alpha row, rear-foot height).
+double signalRms(const Problem& pb, const Range& r, int channel) {
+  const MeasuredData& d = pb.prepared.data;
+  double sum = 0.0;
+  for (std::size_t e = 0; e < r.size; ++e) {
+    const std::size_t i = pb.entries[r.begin + e].row;
+    double x = 0.0;
+    if (channel >= kGammaKneeLeft && channel <= kGammaKneeRight && d.has_torque)
+      x = d.gamma[i](physicalJointOfMotor(channel - kGammaKneeLeft, d.stance[i]));
+    else if (channel >= kR1x && channel <= kR2z && d.has_reactions)
+      x = d.reactions[i](channel - kR1x);
+    sum += x * x;
+  }
+  return std::sqrt(sum / std::max<std::size_t>(1, r.size));
+}
+
 // Held-out prediction of the least-squares fit of r_fit on [1, columns].
+// A small ridge (1e-6 of the largest diagonal of AᵀA) keeps the solution bounded where columns
+// are collinear (the two stances' hat functions sum to the constant).
 Eigen::VectorXd predict(const Eigen::MatrixXd& xf, const Eigen::MatrixXd& xh, const Eigen::VectorXd& rf) {
   Eigen::MatrixXd af(xf.rows(), xf.cols() + 1), ah(xh.rows(), xh.cols() + 1);
   af << Eigen::VectorXd::Ones(xf.rows()), xf;
   ah << Eigen::VectorXd::Ones(xh.rows()), xh;
-  return ah * af.colPivHouseholderQr().solve(rf);
+  Eigen::MatrixXd normal = af.transpose() * af;
+  normal.diagonal().array() += 1e-6 * normal.diagonal().maxCoeff();
+  return ah * normal.ldlt().solve(af.transpose() * rf);
 }
 
 double rms(const Eigen::VectorXd& v) { return std::sqrt(v.squaredNorm() / std::max<Eigen::Index>(1, v.size())); }
 
 ChannelTest testChannel(const SignatureData& sd, const Context& ctx, const Evaluation& r,
-                        const Range& fr, const Range& hr, int channel, const DiagnoseOptions& o) {
+                        const Range& fr, const Range& hr, int channel, const DiagnoseOptions& o,
+                        const StructureThreshold& th) {
   const Eigen::VectorXd rf = r.fit.segment(fr.begin, fr.size), rh = r.held.segment(hr.begin, hr.size);
   std::vector<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> cols;
   Eigen::Index width = 0;
@@ -201,8 +224,8 @@ ChannelTest testChannel(const SignatureData& sd, const Context& ctx, const Evalu
   const double variance = inflation(held, noise) * t.noise_rms * t.noise_rms * y.squaredNorm();
   t.p_value = variance > 0.0 ? 0.5 * std::erfc(rh.dot(y) / std::sqrt(2.0 * variance)) : 1.0;
   const double structure = std::sqrt(std::max(0.0, t.heldout_rms * t.heldout_rms - t.noise_rms * t.noise_rms));
-  t.structured = t.p_value < o.significance / kNumChannels && t.gain_pct >= o.min_unexplained_gain &&
-                 structure > sd.floor[channel];
+  t.structured = t.p_value < o.significance / kNumChannels && t.gain_pct >= th.min_gain &&
+                 structure > std::max(sd.floor[channel], th.signal_share * signalRms(ctx.held, hr, channel));
   double best = (rh - predict(xf.leftCols(0), xh.leftCols(0), rf)).squaredNorm();
   for (int s = 0; s < kNumSignals; ++s) {
     if (cols[s].first.cols() == 0) continue;
@@ -231,14 +254,15 @@ double angleScatter(const PreparedData& p) {
   return robustScatter(deviations);
 }
 
-std::vector<ChannelTest> testChannels(const Context& ctx, const Evaluation& r, const DiagnoseOptions& o) {
+std::vector<ChannelTest> testChannels(const Context& ctx, const Evaluation& r, const DiagnoseOptions& o,
+                                      const StructureThreshold& th) {
   SignatureData sd(ctx.fit.prepared);
   sd.setFloors(ctx.fit.prepared, ctx.fit.nominal);
   std::vector<ChannelTest> out;
   for (int c = 0; c < kNumChannels; ++c) {
     const Range fr = channelRange(ctx.fit.entries, c), hr = channelRange(ctx.held.entries, c);
     if (fr.size < kMinEntries || hr.size < kMinEntries) continue;
-    out.push_back(testChannel(sd, ctx, r, fr, hr, c, o));
+    out.push_back(testChannel(sd, ctx, r, fr, hr, c, o, th));
   }
   return out;
 }

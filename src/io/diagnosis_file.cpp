@@ -147,15 +147,26 @@ std::string unexplainedPhrase(const Unexplained& u) {
          fmt(u.noise_rms) + ") on " + kChannelNames[u.channel] + " that follows " + follows;
 }
 
-// "…; a residual … is not explained by any effect of the library (reasons of the partial fits)".
+// "…; a residual … is not explained by any effect of the library (the partial fits)": the
+// reason of a best fit out of range in full, the candidates that leave the residual structured
+// by name.
 std::string unexplainedSentence(const Diagnosis& d) {
-  std::string out, reasons;
+  std::string out, reasons, leaving;
   for (std::size_t k = 0; k < d.unexplained.size(); ++k) {
     out += (k == 0 ? "" : k + 1 == d.unexplained.size() ? " and " : ", ") + unexplainedPhrase(d.unexplained[k]);
-    for (const PartialFit& f : d.unexplained[k].partial_fits)
-      if (reasons.find(f.reason) == std::string::npos) reasons += (reasons.empty() ? "" : "; ") + f.reason;
+    for (const PartialFit& f : d.unexplained[k].partial_fits) {
+      const bool structured = f.reason.find("structured residual") != std::string::npos ||
+                              f.reason.find("mimic") != std::string::npos;
+      std::string& list = structured ? leaving : reasons;
+      const std::string item = structured ? effectLabel(f.effect) : f.reason;
+      if (list.find(item) == std::string::npos) list += (list.empty() ? "" : structured ? ", " : "; ") + item;
+    }
   }
   out += std::string(d.unexplained.size() > 1 ? " are" : " is") + " not explained by any effect of the library";
+  const bool one = leaving.find(',') == std::string::npos;
+  if (!leaving.empty())
+    reasons += (reasons.empty() ? "" : "; ") + leaving + (one ? " reduces it but leaves" : " reduce it but leave") +
+               " a structured residual";
   return reasons.empty() ? out : out + " (" + reasons + ")";
 }
 

@@ -13,16 +13,14 @@
 #include "gaitopt/ident/synth.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/io/robot_file.hpp"
+#include "test_ident_support.hpp"
 #include "test_support.hpp"
 
 using namespace gaitopt;
 
 namespace {
 
-const GaitFile& gait() {
-  static const GaitFile g = loadGaitFile(test::sourcePath("configs/gait/default_step.yaml"));
-  return g;
-}
+const GaitFile& gait() { return test::defaultStepGait(); }
 
 MeasuredData synth(const std::vector<Effect>& effects, std::uint64_t seed, int steps = 20) {
   SynthOptions o;

@@ -15,6 +15,7 @@
 #include "gaitopt/io/diagnosis_file.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/io/synth_truth_file.hpp"
+#include "test_ident_support.hpp"
 #include "test_support.hpp"
 
 using namespace gaitopt;
@@ -22,10 +23,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-const GaitFile& gait() {
-  static const GaitFile g = loadGaitFile(test::sourcePath("configs/gait/default_step.yaml"));
-  return g;
-}
+const GaitFile& gait() { return test::defaultStepGait(); }
 
 MeasuredData synth(const std::vector<Effect>& effects, const std::vector<UnmodelledEffect>& unmodelled,
                    std::uint64_t seed, int steps = 20, bool noise = true) {

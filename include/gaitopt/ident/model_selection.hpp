@@ -30,7 +30,8 @@ Selection selectCauses(const Context& ctx, const Linearisation& lin,
                        const std::array<double, kNumChannels>& sigma, const DiagnoseOptions& o,
                        const StageProgress& progress);
 
-// Selection that does not over-reach: a cause that leaves a significant structured residual
+// Selection that does not over-reach: causes no longer significant at the final model are
+// dropped; a cause that leaves a significant structured residual
 // (ident/structured_residual.hpp) on a channel it acts on is not the cause of that residual: it
 // moves to `rejected` and the remaining causes are refitted, until every cause passes.
 void dropOverreaching(const Context& ctx, const Linearisation& lin, Selection& sel,

@@ -13,8 +13,10 @@
 // Test: T = rᵀŷ on the held-out steps, under "noise only" of mean 0 and variance
 // φ σ² ‖ŷ‖² (σ² the variance of r − ŷ, the noise; φ = 1 + 2 Σ ρ_k the inflation by the
 // autocorrelation of r − ŷ, i.e. the effective sample size n/φ); one-sided normal p-value.
-// Structured when p < significance AND the prediction removes at least min_unexplained_gain %
-// of the held-out RMS (the smoothing bias alone is significant on thousands of samples).
+// Structured when p < significance / 10 (ten channels) AND the prediction removes at least
+// `min_gain` % of the held-out RMS (the smoothing bias alone is significant on thousands of
+// samples) AND the structured RMS √(heldout² − noise²) exceeds the data's raw noise of the
+// channel and `signal_share` of its measured signal's RMS.
 // The signature reported is the one whose fit alone predicts the held-out residual best, or
 // `none` when the intercept alone does.
 #include <array>
@@ -43,9 +45,19 @@ double robustScatter(std::vector<double> deviations);
 // the data (about 0.37 encoder count for quantisation alone).
 double angleScatter(const PreparedData& p);
 
+struct StructureThreshold {
+  double min_gain = 0.0;      // [%]
+  double signal_share = 0.0;  // of the measured torque or reaction RMS
+};
+// Reporting `unexplained`: a structure worth naming; a cause's own channels: any structure left.
+inline StructureThreshold unexplainedThreshold(const DiagnoseOptions& o) {
+  return {o.min_unexplained_gain, o.unexplained_signal_share};
+}
+inline StructureThreshold overreachThreshold(const DiagnoseOptions& o) { return {o.min_overreach_gain, 0.0}; }
+
 // The residuals `r` of a model on ctx's fit and held-out entries, tested per channel (channels
 // with fewer than 30 entries in either set are left out).
 std::vector<ChannelTest> testChannels(const Context& ctx, const Evaluation& r,
-                                      const DiagnoseOptions& o);
+                                      const DiagnoseOptions& o, const StructureThreshold& th);
 
 }  // namespace gaitopt::diagnosis
