@@ -12,7 +12,7 @@ namespace {
 // Fractions of the robot's scales that bound an effect (README "Effects" table).
 constexpr double kSensorOffsetShare = 0.04;   // |torque_offset| < 4 % of the peak torque
 constexpr double kCoulombShare = 0.1;         // extra Coulomb < 10 % of the peak torque
-constexpr double kViscousShare = 0.3;         // extra viscous torque at the corner speed < 30 %
+constexpr double kViscousShare = 0.5;         // extra viscous torque at the corner speed < 50 %
 constexpr double kMaxRotorFactor = 4.0;
 constexpr double kGainSpan = 0.3;             // torque_gain in (0.7, 1.3)
 constexpr double kMaxEncoderOffset = 0.1;     // rad: a mounting error, not a wrong zero by turns
@@ -57,7 +57,7 @@ AdmissibleRange admissibleRange(const Effect& e, const RobotParams& r) {
     case EffectKind::Viscous:
       return {-jointValue(r.viscous, r.joint_extras.viscous, p), kViscousShare * peak / corner,
               "total friction >= 0, extra torque at the corner speed " + fmt("%g", corner) +
-                  " rad/s < 30 % of the peak torque"};
+                  " rad/s < 50 % of the peak torque"};
     case EffectKind::RotorInertia: return {0.0, kMaxRotorFactor, "factor > 0, at most 4"};
     case EffectKind::TorqueOffset:
       return {-kSensorOffsetShare * peak, kSensorOffsetShare * peak,
