@@ -226,6 +226,7 @@ ChannelTest testChannel(const SignatureData& sd, const Context& ctx, const Evalu
   const double structure = std::sqrt(std::max(0.0, t.heldout_rms * t.heldout_rms - t.noise_rms * t.noise_rms));
   t.structured = t.p_value < o.significance / kNumChannels && t.gain_pct >= th.min_gain &&
                  structure > std::max(sd.floor[channel], th.signal_share * signalRms(ctx.held, hr, channel));
+  if (!t.structured) return t;  // the signature only names a structure
   double best = (rh - predict(xf.leftCols(0), xh.leftCols(0), rf)).squaredNorm();
   for (int s = 0; s < kNumSignals; ++s) {
     if (cols[s].first.cols() == 0) continue;

@@ -32,7 +32,7 @@ struct ChannelTest {
   double noise_rms = 0.0;    // of what no signature predicts
   double p_value = 1.0;
   double gain_pct = 0.0;     // 100 (1 − noise_rms / heldout_rms)
-  Signature signature = Signature::None;
+  Signature signature = Signature::None;  // of a structured residual only
   bool structured = false;
 };
 
