@@ -1,6 +1,8 @@
 #pragma once
 // Helpers shared by the identification tests.
 #include "gaitopt/ident/residual_model.hpp"
+#include "gaitopt/io/gait_file.hpp"
+#include "test_support.hpp"
 
 namespace gaitopt::test {
 
@@ -12,6 +14,12 @@ inline PreprocessOptions exactSmoothing() {
   o.order = o.alpha_row_order = 8;
   o.half_window = o.alpha_row_half_window = 0.1;
   return o;
+}
+
+// The shipped default gait (robot, parameters, options) the hidden-effect tests synthesise from.
+inline const GaitFile& defaultStepGait() {
+  static const GaitFile g = loadGaitFile(sourcePath("configs/gait/default_step.yaml"));
+  return g;
 }
 
 }  // namespace gaitopt::test

@@ -20,7 +20,7 @@ namespace {
 
 struct SynthArgs {
   std::string robot, gait, out, noise = "default";
-  std::vector<std::string> effects;
+  std::vector<std::string> effects, unmodelled;
   SynthOptions options;
 };
 
@@ -40,6 +40,9 @@ void registerSynthCommand(CLI::App& app, int& exit_code) {
       ->check(integerWithin(3, 300));
   cmd->add_option("--effect", args->effects,
                   "Hidden effect NAME[@JOINT]=VALUE (repeatable), e.g. coulomb@knee_right=3.2");
+  cmd->add_option("--unmodelled", args->unmodelled,
+                  "Effect outside diagnose's library NAME@JOINT=VALUE (repeatable): "
+                  "knee_centre@KNEE=m/rad, joint_compliance@JOINT=N·m/rad");
   cmd->add_option("--noise", args->noise, "default (2^14 counts/rev, 0.3 N·m, 2 N) or none")
       ->check(CLI::IsMember({"default", "none"}));
   cmd->add_option("--seed", args->options.seed,
@@ -58,6 +61,13 @@ void registerSynthCommand(CLI::App& app, int& exit_code) {
         effects.push_back(parseEffectSpec(spec));
       } catch (const std::invalid_argument& e) {
         throw CLI::ValidationError("--effect", "'" + printable(spec) + "': " + e.what());
+      }
+    }
+    for (const std::string& spec : args->unmodelled) {
+      try {
+        args->options.unmodelled.push_back(parseUnmodelledSpec(spec));
+      } catch (const std::invalid_argument& e) {
+        throw CLI::ValidationError("--unmodelled", "'" + spec + "': " + e.what());
       }
     }
     const RobotParams robot = loadRobot(args->robot);

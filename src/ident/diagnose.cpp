@@ -11,6 +11,7 @@
 
 #include "gaitopt/ident/inertial_stage.hpp"
 #include "gaitopt/ident/model_selection.hpp"
+#include "gaitopt/ident/structured_residual.hpp"
 
 namespace gaitopt {
 
@@ -75,36 +76,64 @@ std::vector<char> holdoutRows(const MeasuredData& data, int holdout, int shift, 
   return rows;
 }
 
-// The channels carrying 90 % of the noise-normalised change from `before` to `after`
-// (largest first), and the reduction of their noise-normalised RMS [%].
-std::pair<std::vector<int>, double> effectChannels(const std::vector<Entry>& entries,
-                                                   const Eigen::VectorXd& before,
-                                                   const Eigen::VectorXd& after) {
-  std::array<double, kNumChannels> change{}, b{}, a{};
-  for (std::size_t e = 0; e < entries.size(); ++e) {
-    const int c = entries[e].channel;
-    change[c] += (before(e) - after(e)) * (before(e) - after(e));
-    b[c] += before(e) * before(e);
-    a[c] += after(e) * after(e);
+// The `inertial` cause, like a named one, must be admissible — its physically consistent fit
+// inside the consistent set, no constraint binding — and leave no structured residual on the
+// channels it acts on; otherwise it is a partial fit and the named causes of `sel` are the model.
+void dropOverreachingInertial(const Context& ctx, const Selection& sel, const DiagnoseOptions& o,
+                              Diagnosis& dg) {
+  if (!dg.inertial.accepted) return;
+  const Evaluation ext = ctx.evaluate(dg.extended_robot);
+  const std::vector<int> channels =
+      actingChannels(ctx.held.entries, sel.model.r.held, ext.held, o.min_channel_gain / 100.0);
+  std::vector<int> left;
+  for (const ChannelTest& t : testChannels(ctx, ext, o, overreachThreshold(o)))
+    if (t.structured && std::find(channels.begin(), channels.end(), t.channel) != channels.end())
+      left.push_back(t.channel);
+  std::string binding;
+  for (const std::string& a : dg.inertial.active) binding += (binding.empty() ? "" : ", ") + a;
+  if (left.empty() && binding.empty()) return;
+  dg.partial_fits.push_back({dg.causes.back().effect, dg.inertial.p_value,
+                             binding.empty()
+                                 ? "the inertial parameters reduce the residual but leave a "
+                                   "significant structured residual on " + channelList(left)
+                                 : "best inertial fit: on the boundary of physical consistency (" +
+                                       binding + " binding)",
+                             channels});
+  dg.inertial.accepted = false;
+  dg.causes = sel.causes;
+  dg.extended_robot = withEffects(ctx.fit.nominal, sel.model.effects);
+}
+
+// The channels whose held-out residual `r` is still structured, with the partial fits that act
+// on them.
+std::vector<Unexplained> unexplained(const Context& ctx, const Evaluation& r, const DiagnoseOptions& o,
+                                     const std::vector<PartialFit>& partial) {
+  std::vector<Unexplained> out;
+  for (const ChannelTest& t : testChannels(ctx, r, o, unexplainedThreshold(o))) {
+    if (!t.structured) continue;
+    Unexplained u;
+    u.channel = t.channel;
+    const bool joint = t.channel >= kGammaKneeLeft && t.channel <= kGammaKneeRight;
+    u.joint = joint ? t.channel - kGammaKneeLeft : kNoJoint;
+    u.heldout_rms = t.heldout_rms;
+    u.noise_rms = t.noise_rms;
+    u.p_value = t.p_value;
+    u.signature = t.signature;
+    for (const PartialFit& f : partial)
+      if (std::find(f.channels.begin(), f.channels.end(), t.channel) != f.channels.end())
+        u.partial_fits.push_back(f);
+    out.push_back(u);
   }
-  std::vector<int> order(kNumChannels);
-  for (int c = 0; c < kNumChannels; ++c) order[c] = c;
-  std::sort(order.begin(), order.end(), [&](int x, int y) { return change[x] > change[y]; });
-  const double total = std::accumulate(change.begin(), change.end(), 0.0);
-  std::vector<int> channels;
-  double carried = 0.0, sb = 0.0, sa = 0.0;
-  for (int c : order) {
-    if (total <= 0.0 || carried >= 0.9 * total) break;
-    channels.push_back(c);
-    carried += change[c];
-    sb += b[c];
-    sa += a[c];
-  }
-  std::sort(channels.begin(), channels.end());
-  return {channels, sb > 0.0 ? 100.0 * (1.0 - std::sqrt(sa / sb)) : 0.0};
+  return out;
 }
 
 }  // namespace
+
+const char* signatureName(Signature s) {
+  static const std::array<const char*, 6> names = {"joint angle", "velocity", "acceleration",
+                                                   "torque", "torque time shift", "none"};
+  return names[static_cast<int>(s)];
+}
 
 Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const MeasuredData& data,
                    const DiagnoseOptions& o) {
@@ -129,19 +158,26 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
   progress("nominal residuals (" + std::to_string(data.size()) + " samples)", 1);
   const Linearisation lin = linearise(ctx, candidateEffects(o, data), r0);
   progress("screening: " + std::to_string(lin.candidates.size()) + " candidates linearised", 2);
-  const Selection sel =
-      selectCauses(ctx, lin, channelSigma(fit, dg.nominal_residuals), o, progress);
+  Selection sel = selectCauses(ctx, lin, channelSigma(fit, dg.nominal_residuals), o, progress);
+  dropOverreaching(ctx, lin, sel, o);
   dg.candidates = sel.candidates;
   dg.causes = sel.causes;
+  dg.partial_fits = sel.rejected;
   dg.extended_robot = withEffects(robot, sel.model.effects);
   const bool inertial_allowed =
       o.kinds.empty() || std::find(o.kinds.begin(), o.kinds.end(), EffectKind::Inertial) != o.kinds.end();
-  if (inertial_allowed) addInertialStage(ctx, lin, sel, o, dg);
+  if (inertial_allowed) {
+    addInertialStage(ctx, lin, sel, o, dg);
+    dropOverreachingInertial(ctx, sel, o, dg);
+  }
   progress(inertial_allowed ? "inertial stage: " +
                                   std::string(dg.inertial.accepted ? "accepted" : "not accepted")
                             : "inertial stage: not a candidate",
            progress.stages());
   dg.extended_residuals = residuals(prepared, dg.extended_robot, mo, all);
+  dg.unexplained = unexplained(ctx, {entryValues(fit.entries, dg.extended_residuals),
+                                     entryValues(held.entries, dg.extended_residuals)},
+                               o, dg.partial_fits);
   dg.nominal_all = channelReport(prepared, fit.entries, held.entries, dg.nominal_residuals, all, robot, mo);
   dg.nominal = channelReport(prepared, {}, held.entries, dg.nominal_residuals, dg.holdout_rows, robot, mo);
   dg.extended = channelReport(prepared, {}, held.entries, dg.extended_residuals, dg.holdout_rows,

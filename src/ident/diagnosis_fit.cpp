@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <numeric>
 #include <thread>
 
 namespace gaitopt::diagnosis {
@@ -251,6 +252,46 @@ double bestChannelGain(const std::vector<Entry>& entries, const Eigen::VectorXd&
   for (int c = 0; c < kNumChannels; ++c)
     if (b[c] > 0.0) best = std::max(best, 100.0 * (1.0 - std::sqrt(a[c] / b[c])));
   return best;
+}
+
+std::pair<std::vector<int>, double> effectChannels(const std::vector<Entry>& entries,
+                                                   const Eigen::VectorXd& before,
+                                                   const Eigen::VectorXd& after) {
+  std::array<double, kNumChannels> change{}, b{}, a{};
+  for (std::size_t e = 0; e < entries.size(); ++e) {
+    const int c = entries[e].channel;
+    change[c] += (before(e) - after(e)) * (before(e) - after(e));
+    b[c] += before(e) * before(e);
+    a[c] += after(e) * after(e);
+  }
+  std::vector<int> order(kNumChannels);
+  for (int c = 0; c < kNumChannels; ++c) order[c] = c;
+  std::sort(order.begin(), order.end(), [&](int x, int y) { return change[x] > change[y]; });
+  const double total = std::accumulate(change.begin(), change.end(), 0.0);
+  std::vector<int> channels;
+  double carried = 0.0, sb = 0.0, sa = 0.0;
+  for (int c : order) {
+    if (total <= 0.0 || carried >= 0.9 * total) break;
+    channels.push_back(c);
+    carried += change[c];
+    sb += b[c];
+    sa += a[c];
+  }
+  std::sort(channels.begin(), channels.end());
+  return {channels, sb > 0.0 ? 100.0 * (1.0 - std::sqrt(sa / sb)) : 0.0};
+}
+
+std::vector<int> actingChannels(const std::vector<Entry>& entries, const Eigen::VectorXd& before,
+                                const Eigen::VectorXd& after, double share) {
+  std::array<double, kNumChannels> change{}, b{};
+  for (std::size_t e = 0; e < entries.size(); ++e) {
+    change[entries[e].channel] += (after(e) - before(e)) * (after(e) - before(e));
+    b[entries[e].channel] += before(e) * before(e);
+  }
+  std::vector<int> channels;
+  for (int c = 0; c < kNumChannels; ++c)
+    if (b[c] > 0.0 && change[c] >= share * share * b[c]) channels.push_back(c);
+  return channels;
 }
 
 }  // namespace gaitopt::diagnosis

@@ -41,6 +41,19 @@ std::string effectLabel(const Effect& e) {
   return std::string(effectInfo(e.kind).name) + (j.empty() ? "" : "@" + j);
 }
 
+double parseEffectValue(const std::string& text) {
+  std::size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(value))
+    throw std::invalid_argument("value '" + text + "' is not a number");
+  return value;
+}
+
 Effect parseEffectSpec(const std::string& spec) {
   const std::size_t eq = spec.find('=');
   if (eq == std::string::npos) throw std::invalid_argument("expected NAME[@JOINT]=VALUE");
@@ -69,15 +82,7 @@ Effect parseEffectSpec(const std::string& spec) {
   } else if (at != std::string::npos) {
     throw std::invalid_argument(name + " takes no joint");
   }
-  std::size_t used = 0;
-  const std::string text = spec.substr(eq + 1);
-  try {
-    e.value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(e.value))
-    throw std::invalid_argument("value '" + text + "' is not a number");
+  e.value = parseEffectValue(spec.substr(eq + 1));
   if (info.factor && e.value <= 0.0) throw std::invalid_argument(name + " must be > 0");
   return e;
 }

@@ -5,12 +5,22 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <cstdio>
+
+#include "gaitopt/ident/admissible_range.hpp"
+#include "gaitopt/ident/structured_residual.hpp"
 
 namespace gaitopt::diagnosis {
 
 namespace {
 
 constexpr int kRefined = 3;  // candidates refined per round (best linearised RSS)
+// More library effects than this acting on one channel are taken for a combination mimicking
+// something the library lacks: three effects of one joint (gain, Coulomb, rotor inertia) fitted
+// together reproduce most of a moving knee centre's torque, leaving only a residual the size of
+// the smoothing bias.
+constexpr int kMaxCausesPerChannel = 2;
 
 struct Scored {
   std::vector<int> which;  // candidate indices of the model
@@ -41,19 +51,17 @@ Scored score(const Context& ctx, Fit f, const std::array<double, kNumChannels>& 
   return s;
 }
 
-// Screening: each remaining candidate (neither `accepted` nor `confounded`) with the accepted
+// Screening: each remaining candidate (not `accepted`; a member of a cause's class may still be
+// a second cause: Coulomb and viscous friction of one joint both present) with the accepted
 // ones, linearised about the current model (one LS solve for the increments; the accepted
 // effects may be nonlinear); (weighted RSS, candidate) by increasing RSS.
 std::vector<std::pair<double, int>> screen(const Context& ctx, const Linearisation& lin,
                                            const std::vector<int>& accepted,
-                                           const std::vector<int>& confounded,
                                            const std::array<double, kNumChannels>& sigma,
                                            const Eigen::VectorXd& rb) {
   std::vector<std::pair<double, int>> order;
   for (int c = 0; c < static_cast<int>(lin.candidates.size()); ++c) {
-    if (std::find(accepted.begin(), accepted.end(), c) != accepted.end() ||
-        std::find(confounded.begin(), confounded.end(), c) != confounded.end())
-      continue;  // in a cause already, or in its class
+    if (std::find(accepted.begin(), accepted.end(), c) != accepted.end()) continue;
     std::vector<int> which = accepted;
     which.push_back(c);
     Eigen::MatrixXd J(ctx.fit.entries.size(), which.size());
@@ -80,6 +88,40 @@ Fit linearisedFit(const Context& ctx, const Linearisation& lin, int c,
 
 bool sameCandidate(const Effect& a, const Effect& b) { return a.kind == b.kind && a.joint == b.joint; }
 
+// An encoder offset or a backlash smaller than the angle resolution of the data (3 × the angle
+// scatter: about one count of a quantising encoder) is what the fit of a nonlinear effect on the
+// same channels leaves (e.g. a backlash, whose tanh of the noisy torque is biased), not a cause.
+std::string unresolved(const Effect& e, const PreparedData& p) {
+  const double resolution = 3.0 * angleScatter(p);
+  const bool angle = e.kind == EffectKind::EncoderOffset || e.kind == EffectKind::Backlash;
+  if (!angle || std::abs(e.value) >= resolution) return "";
+  char b[160];
+  std::snprintf(b, sizeof b, "%s %.2g rad is below the angle resolution of the data, %.2g rad",
+                effectLabel(e).c_str(), e.value, resolution);
+  return b;
+}
+
+// Reweights with the noise levels the candidate's model leaves (the current model's are
+// conservative where the effect acts: sel.sigma), refits it by Gauss–Newton and rescores it
+// (`s` updated); true when it is significant, better on the held-out steps and of practical gain.
+bool passesTests(const Context& ctx, const Linearisation& lin, Selection& sel, Scored& s, double n,
+                 const DiagnoseOptions& o) {
+  const std::size_t rows = ctx.fit.prepared.data.size();
+  sel.sigma = channelSigma(ctx.fit, fitMatrix(rows, ctx.fit.entries, s.fit.r.fit));
+  const Eigen::VectorXd rb = weightedVector(ctx.fit.entries, sel.model.r.fit, sel.sigma);
+  const Eigen::VectorXd hb = weightedVector(ctx.held.entries, sel.model.r.held, sel.sigma);
+  const Fit refit = std::all_of(s.which.begin(), s.which.end(),
+                                [&](int c) { return effectInfo(lin.candidates[c].kind).linear; })
+                        ? chordFit(ctx, lin, s.which, sel.sigma, 1)
+                        : gaussNewton(ctx, s.fit, sel.sigma, 3);
+  const std::vector<int> which = s.which;
+  s = score(ctx, refit, sel.sigma, rb.squaredNorm(), n, rb);
+  s.which = which;
+  return s.result.p_value < o.significance &&
+         s.result.holdout_rms < std::sqrt(hb.squaredNorm() / hb.size()) &&
+         bestChannelGain(ctx.held.entries, sel.model.r.held, s.fit.r.held) >= o.min_channel_gain;
+}
+
 }  // namespace
 
 std::vector<Effect> candidateEffects(const DiagnoseOptions& o, const MeasuredData& d) {
@@ -103,16 +145,15 @@ std::vector<Effect> candidateEffects(const DiagnoseOptions& o, const MeasuredDat
 Selection selectCauses(const Context& ctx, const Linearisation& lin,
                        const std::array<double, kNumChannels>& sigma, const DiagnoseOptions& o,
                        const StageProgress& progress) {
-  Selection sel{{}, {{}, lin.r0, {}}, sigma, {}, {}};
+  Selection sel{{}, {{}, lin.r0, {}}, sigma, {}, {}, {}};
   const std::size_t rows = ctx.fit.prepared.data.size();
   const double n = static_cast<double>(ctx.fit.entries.size());
-  std::vector<int> confounded;
   while (static_cast<int>(sel.accepted.size()) < o.max_causes) {
     sel.sigma = channelSigma(ctx.fit, fitMatrix(rows, ctx.fit.entries, sel.model.r.fit));  // current model
     const Eigen::VectorXd rb = weightedVector(ctx.fit.entries, sel.model.r.fit, sel.sigma);
     const double rss_base = rb.squaredNorm();
     const std::vector<std::pair<double, int>> order =
-        screen(ctx, lin, sel.accepted, confounded, sel.sigma, rb);
+        screen(ctx, lin, sel.accepted, sel.sigma, rb);
     if (order.empty()) break;
     // Refinement of the best candidates on the full model.
     const int refined = std::min<int>(kRefined, order.size());
@@ -139,43 +180,46 @@ Selection selectCauses(const Context& ctx, const Linearisation& lin,
                   rb)
                 .result);
     }
-    const auto best = std::min_element(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) {
-      return a.result.bic < b.result.bic;
-    });
-    // The class of the best: candidates statistically indistinguishable from it.
-    Cause cause{best->result.effect, 0.0, 1.0, {}};
+    std::vector<int> by_bic(refined);
+    std::iota(by_bic.begin(), by_bic.end(), 0);
+    std::sort(by_bic.begin(), by_bic.end(),
+              [&](int a, int b) { return scored[a].result.bic < scored[b].result.bic; });
+    const Scored* lowest = &scored[by_bic[0]];
+    // The class of the lowest BIC: candidates statistically indistinguishable from it.
+    Cause cause{lowest->result.effect, 0.0, 1.0, {}};
     const double threshold = chi2Quantile1(o.significance);
-    std::vector<int> cls;
     for (const Scored& s : scored)
-      if (&s != &*best && s.result.p_value < o.significance &&
-          s.result.bic - best->result.bic < threshold) {
+      if (&s != lowest && s.result.p_value < o.significance &&
+          s.result.bic - lowest->result.bic < threshold)
         cause.confounded_with.push_back(effectLabel(s.result.effect));
-        for (int c = 0; c < static_cast<int>(lin.candidates.size()); ++c)
-          if (sameCandidate(lin.candidates[c], s.result.effect)) cls.push_back(c);
+    // By increasing BIC, the first refined candidate that passes the tests is the round's cause:
+    // an effect seen on a channel of few entries (a slope in the double-support closure) can rank
+    // behind a fit of the noise of the many single-support entries.
+    const Scored* best = nullptr;
+    for (int i : by_bic) {
+      if (passesTests(ctx, lin, sel, scored[i], n, o)) {
+        best = &scored[i];
+        break;
       }
-    // Reweight with the noise levels the best model leaves (the current model's are
-    // conservative where the effect acts) and refit it by Gauss–Newton before testing.
-    sel.sigma = channelSigma(ctx.fit, fitMatrix(rows, ctx.fit.entries, best->fit.r.fit));
-    const Eigen::VectorXd rb2 = weightedVector(ctx.fit.entries, sel.model.r.fit, sel.sigma);
-    const Eigen::VectorXd hb2 = weightedVector(ctx.held.entries, sel.model.r.held, sel.sigma);
-    const Fit refit = std::all_of(best->which.begin(), best->which.end(),
-                                  [&](int c) { return effectInfo(lin.candidates[c].kind).linear; })
-                          ? chordFit(ctx, lin, best->which, sel.sigma, 1)
-                          : gaussNewton(ctx, best->fit, sel.sigma, 3);
-    const std::vector<int> best_which = best->which;
-    *best = score(ctx, refit, sel.sigma, rb2.squaredNorm(), n, rb2);
-    best->which = best_which;
-    const CandidateResult& br = best->result;
-    if (!(br.p_value < o.significance &&
-          br.holdout_rms < std::sqrt(hb2.squaredNorm() / hb2.size()) &&
-          bestChannelGain(ctx.held.entries, sel.model.r.held, best->fit.r.held) >= o.min_channel_gain)) {
+    }
+    if (!best) {
       progress("round " + std::to_string(sel.accepted.size() + 1) + ": no further cause", progress.stages() - 1);
+      break;
+    }
+    if (best != lowest) cause.confounded_with.clear();
+    const CandidateResult& br = best->result;
+    const std::string outside = unresolved(br.effect, ctx.fit.prepared) + firstInadmissible(br.all, ctx.fit.nominal);
+    if (!outside.empty()) {  // the data carry something the library does not describe
+      sel.rejected.push_back({br.effect, br.p_value, "best library fit: " + outside,
+                              actingChannels(ctx.held.entries, sel.model.r.held, best->fit.r.held,
+                                             o.min_channel_gain / 100.0)});
+      progress("round " + std::to_string(sel.accepted.size() + 1) + ": best fit not admissible",
+               progress.stages() - 1);
       break;
     }
     cause.effect = br.effect;
     cause.stderr_ = br.stderr_;
     cause.p_value = br.p_value;
-    confounded.insert(confounded.end(), cls.begin(), cls.end());
     sel.causes.push_back(cause);
     for (const Effect& e : br.all)
       for (int c = 0; c < static_cast<int>(lin.candidates.size()); ++c)
@@ -184,12 +228,129 @@ Selection selectCauses(const Context& ctx, const Linearisation& lin,
           sel.accepted.push_back(c);
     // Converge the accepted model, so that the next round credits a candidate only with what
     // it adds, not with a better fit of the effects already accepted.
-    sel.model = gaussNewton(ctx, best->fit, sel.sigma, 3);
+    const Fit converged = gaussNewton(ctx, best->fit, sel.sigma, 3);
+    // The round's test credits the new effect with what the joint refit gained, including a
+    // better fit of a nonlinear accepted effect; at the converged model the new value itself
+    // must still differ significantly from neutral (a backlash once brought a rotor-inertia
+    // factor of 1.001 ± 0.008 "with p = 0").
+    const Effect& added = converged.effects.back();
+    const double deviation = effectInfo(added.kind).factor ? added.value - 1.0 : added.value;
+    if (br.stderr_ > 0.0 &&
+        chi2Survival(deviation * deviation / (br.stderr_ * br.stderr_)) >= o.significance) {
+      sel.causes.pop_back();
+      sel.accepted.pop_back();
+      // Keep what the joint refit gained for the accepted effects.
+      Fit kept{{converged.effects.begin(), converged.effects.end() - 1}, {}, {}};
+      kept.r = ctx.evaluate(kept.effects);
+      const double before = weightedVector(ctx.fit.entries, sel.model.r.fit, sel.sigma).squaredNorm();
+      if (weightedVector(ctx.fit.entries, kept.r.fit, sel.sigma).squaredNorm() < before)
+        sel.model = gaussNewton(ctx, kept, sel.sigma, 3);
+      progress("round " + std::to_string(sel.causes.size() + 1) + ": no further cause", progress.stages() - 1);
+      break;
+    }
+    sel.model = converged;
+    for (Cause& c : sel.causes)  // a class member that is a cause itself is no longer "confounded"
+      c.confounded_with.erase(std::remove(c.confounded_with.begin(), c.confounded_with.end(),
+                                          effectLabel(br.effect)),
+                              c.confounded_with.end());
     progress("round " + std::to_string(sel.causes.size()) + ": " + effectLabel(br.effect),
              2 + static_cast<int>(sel.causes.size()));
   }
   for (std::size_t i = 0; i < sel.causes.size(); ++i) sel.causes[i].effect.value = sel.model.effects[i].value;
   return sel;
+}
+
+namespace {
+
+// After a refit without some effects, the remaining ones must still differ significantly from
+// neutral (χ²₁ of value over its standard error at the refitted model); those that do not are
+// dropped and the rest refitted again.
+void dropInsignificant(const Context& ctx, const Linearisation& lin, Selection& sel,
+                       const DiagnoseOptions& o) {
+  for (bool dropped = true; dropped && !sel.causes.empty();) {
+    dropped = false;
+    const Eigen::MatrixXd cov = sel.model.JtJ.size() ? sel.model.JtJ.ldlt().solve(
+                                    Eigen::MatrixXd::Identity(sel.model.JtJ.rows(), sel.model.JtJ.cols()))
+                                                      : Eigen::MatrixXd();
+    const Eigen::VectorXd r = weightedVector(ctx.fit.entries, sel.model.r.fit, sel.sigma);
+    const double s2 = r.squaredNorm() / std::max(1.0, r.size() - static_cast<double>(sel.causes.size()));
+    const double phi = inflation(ctx.fit.entries, r);
+    for (std::size_t i = 0; i < sel.causes.size() && cov.rows() == static_cast<Eigen::Index>(sel.causes.size()); ++i) {
+      const Effect& e = sel.model.effects[i];
+      const double deviation = effectInfo(e.kind).factor ? e.value - 1.0 : e.value;
+      const double variance = phi * s2 * cov(i, i);
+      if (variance > 0.0 && chi2Survival(deviation * deviation / variance) >= o.significance) {
+        sel.causes.erase(sel.causes.begin() + i);
+        sel.accepted.erase(sel.accepted.begin() + i);
+        sel.model = sel.accepted.empty() ? Fit{{}, lin.r0, {}}
+                                         : gaussNewton(ctx, chordFit(ctx, lin, sel.accepted, sel.sigma, kIterations),
+                                                       sel.sigma, 3);
+        for (std::size_t k = 0; k < sel.causes.size(); ++k) sel.causes[k].effect.value = sel.model.effects[k].value;
+        dropped = true;
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+std::string channelList(const std::vector<int>& channels) {
+  std::string out;
+  for (int c : channels) out += (out.empty() ? "" : ", ") + std::string(kChannelNames[c]);
+  return out;
+}
+
+void dropOverreaching(const Context& ctx, const Linearisation& lin, Selection& sel,
+                      const DiagnoseOptions& o) {
+  dropInsignificant(ctx, lin, sel, o);
+  while (!sel.causes.empty()) {
+    std::array<bool, kNumChannels> structured{};
+    for (const ChannelTest& t : testChannels(ctx, sel.model.r, o, overreachThreshold(o)))
+      structured[t.channel] = t.structured;
+    std::vector<std::vector<int>> channels;
+    std::array<int, kNumChannels> crowd{};
+    for (std::size_t i = 0; i < sel.causes.size(); ++i) {
+      std::vector<Effect> others = sel.model.effects;
+      others.erase(others.begin() + i);
+      channels.push_back(actingChannels(ctx.held.entries, ctx.evaluate(others).held, sel.model.r.held,
+                                        o.min_channel_gain / 100.0));
+      for (int c : channels.back()) ++crowd[c];
+    }
+    std::vector<int> keep;
+    for (std::size_t i = 0; i < sel.causes.size(); ++i) {
+      std::vector<int> left, crowded;
+      for (int c : channels[i]) {
+        if (structured[c]) left.push_back(c);
+        if (crowd[c] > kMaxCausesPerChannel) crowded.push_back(c);
+      }
+      if (left.empty() && crowded.empty()) {
+        keep.push_back(static_cast<int>(i));
+        continue;
+      }
+      const std::string label = effectLabel(sel.causes[i].effect);
+      sel.rejected.push_back({sel.causes[i].effect, sel.causes[i].p_value,
+                              left.empty() ? label + " is one of more than two library effects fitted together on " +
+                                                 channelList(crowded) + ", which then mimic a structured residual"
+                                           : label + " reduces the residual but leaves a significant structured "
+                                                     "residual on " + channelList(left),
+                              channels[i]});
+    }
+    if (keep.size() == sel.causes.size()) return;
+    std::vector<int> accepted;
+    std::vector<Cause> causes;
+    for (int i : keep) {
+      accepted.push_back(sel.accepted[i]);
+      causes.push_back(sel.causes[i]);
+    }
+    sel.model = accepted.empty()
+                    ? Fit{{}, lin.r0, {}}
+                    : gaussNewton(ctx, chordFit(ctx, lin, accepted, sel.sigma, kIterations), sel.sigma, 3);
+    for (std::size_t i = 0; i < causes.size(); ++i) causes[i].effect.value = sel.model.effects[i].value;
+    sel.accepted = accepted;
+    sel.causes = causes;
+    dropInsignificant(ctx, lin, sel, o);
+  }
 }
 
 }  // namespace gaitopt::diagnosis

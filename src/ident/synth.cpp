@@ -191,10 +191,34 @@ struct Noise {
   }
 };
 
+// The knee_centre torques (synth.hpp) of sample s, per motor.
+Vec4 kneeCentreTorque(const Model& m, Stance stance, const TrueSample& s,
+                      const std::vector<UnmodelledEffect>& effects) {
+  Vec4 torque = Vec4::Zero();
+  const Vec5 theta = m.theta_map * s.q + m.theta_offset;
+  for (const UnmodelledEffect& e : effects) {
+    if (e.kind != UnmodelledKind::KneeCentre) continue;
+    const int motor = physicalJointOfMotor(e.joint, stance);  // the map is its own inverse
+    const bool leg1 = motor == 0;
+    const int femur = leg1 ? 1 : 3, tibia = leg1 ? 0 : 4;
+    const Vec2 reaction = s.reactions.segment<2>(leg1 ? 0 : 2);
+    const Vec2 force(-reaction(0), m.mass(tibia) * m.gravity - reaction(1));
+    const double flexion = std::abs(motorAngles(s.q)(motor) + M_PI);
+    const Vec2 along(std::cos(theta(femur)), std::sin(theta(femur)));
+    torque(motor) += e.value * (1.0 + flexion) * force.dot(along);
+  }
+  return torque;
+}
+
 void appendMeasured(const SensorModel& sensors, Stance stance, long step, double t,
                     const TrueSample& s, Noise& noise, MeasuredData& d) {
   const SensorReading r = sensorReading(sensors, stance, s.q, s.gamma_star);
   Vec4 motor = motorAngles(r.q);
+  for (const UnmodelledEffect& e : noise.o.unmodelled)
+    if (e.kind == UnmodelledKind::JointCompliance) {
+      const int j = physicalJointOfMotor(e.joint, stance);
+      motor(j) += s.gamma_star(j) / e.value;
+    }
   for (int j = 0; j < 4; ++j) motor(j) = noise.quantised(motor(j));
   d.t.push_back(t);
   d.q.push_back(qFromMotorAngles(noise.quantised(r.q(0)), motor));
@@ -239,6 +263,8 @@ MeasuredData synthesize(const RobotParams& robot, const GaitParameters& gait,
     if (samples.empty())
       throw std::runtime_error("synth: step " + std::to_string(step) +
                                ": no variation of the gait is walkable by the TRUE model");
+    for (TrueSample& sample : samples)
+      sample.gamma_star += kneeCentreTorque(models[static_cast<int>(stance)], stance, sample, options.unmodelled);
     for (std::size_t k = 0; k < samples.size(); ++k)
       appendMeasured(truth.sensors, stance, step, t0 + k / options.rate, samples[k], noise, d);
     t0 += samples.size() / options.rate;
@@ -246,27 +272,66 @@ MeasuredData synthesize(const RobotParams& robot, const GaitParameters& gait,
   return d;
 }
 
-Effect randomEffect(EffectKind kind, std::mt19937_64& rng) {
+Effect randomEffect(EffectKind kind, std::mt19937_64& rng, bool low) {
   const auto u = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  // A magnitude from [small, large], or from its lowest quarter.
+  const auto mag = [&](double small, double large) { return u(small, low ? small + 0.25 * (large - small) : large); };
   const auto sign = [&] { return u(0.0, 1.0) < 0.5 ? -1.0 : 1.0; };
   const auto joint = [&](int n) { return std::min(n - 1, static_cast<int>(u(0.0, n))); };
   switch (kind) {
-    case EffectKind::Coulomb: return {kind, joint(4), u(1.0, 6.0)};
-    case EffectKind::Viscous: return {kind, joint(4), u(1.0, 6.0)};
-    case EffectKind::RotorInertia: return {kind, joint(4), u(1.3, 2.0)};
-    case EffectKind::TorqueOffset: return {kind, joint(4), sign() * u(1.0, 5.0)};
+    case EffectKind::Coulomb: return {kind, joint(4), mag(1.0, 6.0)};
+    case EffectKind::Viscous: return {kind, joint(4), mag(1.0, 6.0)};
+    case EffectKind::RotorInertia: return {kind, joint(4), mag(1.3, 2.0)};
+    case EffectKind::TorqueOffset: return {kind, joint(4), sign() * mag(1.0, 5.0)};
     case EffectKind::TorqueGain:
-      return {kind, joint(4), u(0.0, 1.0) < 0.5 ? u(0.85, 0.95) : u(1.05, 1.2)};
-    case EffectKind::EncoderOffset: return {kind, joint(5), sign() * u(0.01, 0.05)};
-    case EffectKind::Backlash: return {kind, joint(4), u(0.01, 0.04)};
-    case EffectKind::Payload: return {kind, kNoJoint, u(2.0, 8.0)};
-    case EffectKind::TrunkCom: return {kind, kNoJoint, sign() * u(0.02, 0.05)};
-    case EffectKind::Slope: return {kind, kNoJoint, u(0.01, 0.04)};
-    case EffectKind::RockerFoot: return {kind, kNoJoint, u(0.02, 0.1)};
-    case EffectKind::FootOffset: return {kind, kNoJoint, sign() * u(0.01, 0.04)};
+      return {kind, joint(4), u(0.0, 1.0) < 0.5 ? u(low ? 0.925 : 0.85, 0.95) : mag(1.05, 1.2)};
+    case EffectKind::EncoderOffset: return {kind, joint(5), sign() * mag(0.01, 0.05)};
+    case EffectKind::Backlash: return {kind, joint(4), mag(0.01, 0.04)};
+    case EffectKind::Payload: return {kind, kNoJoint, mag(2.0, 8.0)};
+    case EffectKind::TrunkCom: return {kind, kNoJoint, sign() * mag(0.02, 0.05)};
+    case EffectKind::Slope: return {kind, kNoJoint, mag(0.01, 0.04)};
+    case EffectKind::RockerFoot: return {kind, kNoJoint, mag(0.02, 0.1)};
+    case EffectKind::FootOffset: return {kind, kNoJoint, sign() * mag(0.01, 0.04)};
     case EffectKind::Inertial: throw std::invalid_argument("inertial is not a synth effect");
   }
   return {kind};
+}
+
+UnmodelledEffect randomUnmodelled(UnmodelledKind kind, std::mt19937_64& rng, bool low) {
+  const auto u = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  const int joint = std::min(3, static_cast<int>(u(0.0, 4.0)));
+  switch (kind) {
+    case UnmodelledKind::KneeCentre: return {kind, joint < 2 ? 0 : 3, u(0.01, low ? 0.0125 : 0.02)};
+    case UnmodelledKind::JointCompliance: return {kind, joint, u(low ? 3500.0 : 2000.0, 4000.0)};
+  }
+  return {kind};
+}
+
+const char* unmodelledName(UnmodelledKind kind) {
+  return kind == UnmodelledKind::KneeCentre ? "knee_centre" : "joint_compliance";
+}
+
+const char* unmodelledUnit(UnmodelledKind kind) {
+  return kind == UnmodelledKind::KneeCentre ? "m/rad" : "N·m/rad";
+}
+
+UnmodelledEffect parseUnmodelledSpec(const std::string& spec) {
+  const std::size_t eq = spec.find('='), at = spec.find('@');
+  if (eq == std::string::npos || at == std::string::npos || at > eq)
+    throw std::invalid_argument("expected NAME@JOINT=VALUE");
+  const std::string name = spec.substr(0, at), joint = spec.substr(at + 1, eq - at - 1);
+  UnmodelledEffect e;
+  if (name == unmodelledName(UnmodelledKind::JointCompliance)) e.kind = UnmodelledKind::JointCompliance;
+  else if (name != unmodelledName(UnmodelledKind::KneeCentre))
+    throw std::invalid_argument("unknown unmodelled effect '" + name + "'");
+  e.joint = -1;
+  for (int j = 0; j < 4; ++j)
+    if (joint == kPhysicalJointNames[j]) e.joint = j;
+  if (e.joint < 0 || (e.kind == UnmodelledKind::KneeCentre && e.joint != 0 && e.joint != 3))
+    throw std::invalid_argument("unknown joint '" + joint + "' for " + name);
+  e.value = parseEffectValue(spec.substr(eq + 1));
+  if (e.value <= 0.0) throw std::invalid_argument(name + " must be > 0");
+  return e;
 }
 
 }  // namespace gaitopt

@@ -77,6 +77,16 @@ void jointValue(JsonWriter& w, const Effect& e) {
   w.key("value").value(e.value);
 }
 
+void partialFitJson(JsonWriter& w, const PartialFit& f) {
+  w.beginObject();
+  if (f.effect.kind == EffectKind::Inertial) {
+    w.key("effect").value("inertial").key("joint").null().key("value").null();
+  } else {
+    jointValue(w, f.effect);
+  }
+  w.key("p_value").value(f.p_value).key("reason").value(f.reason).endObject();
+}
+
 std::string fmt(double v, const char* f = "%.3g") {
   char b[64];
   std::snprintf(b, sizeof b, f, v);
@@ -120,6 +130,46 @@ std::string causePhrase(const Cause& c) {
   return info.name;
 }
 
+// "a residual of 2.1 N·m on knee_right that follows its angle".
+std::string unexplainedPhrase(const Unexplained& u) {
+  const bool joint = u.joint != kNoJoint;
+  const std::string of = joint ? "the " + jointName(u.joint) + " " : "the joint ";
+  std::string follows;
+  switch (u.signature) {
+    case Signature::JointAngle: follows = of + (joint ? "angle" : "angles"); break;
+    case Signature::Velocity: follows = of + (joint ? "velocity" : "velocities"); break;
+    case Signature::Acceleration: follows = of + (joint ? "acceleration" : "accelerations"); break;
+    case Signature::Torque: follows = of + (joint ? "torque" : "torques"); break;
+    case Signature::TorqueShift: follows = "a time shift of " + of + (joint ? "torque" : "torques"); break;
+    case Signature::None: follows = "none of the joint angles, velocities, accelerations or torques"; break;
+  }
+  return "a residual of " + fmt(u.heldout_rms) + " " + kChannelUnits[u.channel] + " (RMS; noise " +
+         fmt(u.noise_rms) + ") on " + kChannelNames[u.channel] + " that follows " + follows;
+}
+
+// "…; a residual … is not explained by any effect of the library (the partial fits)": the
+// reason of a best fit out of range in full, the candidates that leave the residual structured
+// by name.
+std::string unexplainedSentence(const Diagnosis& d) {
+  std::string out, reasons, leaving;
+  for (std::size_t k = 0; k < d.unexplained.size(); ++k) {
+    out += (k == 0 ? "" : k + 1 == d.unexplained.size() ? " and " : ", ") + unexplainedPhrase(d.unexplained[k]);
+    for (const PartialFit& f : d.unexplained[k].partial_fits) {
+      const bool structured = f.reason.find("structured residual") != std::string::npos ||
+                              f.reason.find("mimic") != std::string::npos;
+      std::string& list = structured ? leaving : reasons;
+      const std::string item = structured ? effectLabel(f.effect) : f.reason;
+      if (list.find(item) == std::string::npos) list += (list.empty() ? "" : structured ? ", " : "; ") + item;
+    }
+  }
+  out += std::string(d.unexplained.size() > 1 ? " are" : " is") + " not explained by any effect of the library";
+  const bool one = leaving.find(',') == std::string::npos;
+  if (!leaving.empty())
+    reasons += (reasons.empty() ? "" : "; ") + leaving + (one ? " reduces it but leaves" : " reduce it but leave") +
+               " a structured residual";
+  return reasons.empty() ? out : out + " (" + reasons + ")";
+}
+
 }  // namespace
 
 std::string diagnosisJson(const Diagnosis& d) {
@@ -140,6 +190,21 @@ std::string diagnosisJson(const Diagnosis& d) {
     for (const std::string& s : c.confounded_with) w.value(s);
     w.endArray().endObject();
   }
+  w.endArray();
+  w.key("unexplained").beginArray();
+  for (const Unexplained& u : d.unexplained) {
+    w.beginObject().key("channel").value(kChannelNames[u.channel]).key("joint");
+    if (u.joint == kNoJoint) w.null(); else w.value(jointName(u.joint));
+    w.key("heldout_rms").value(u.heldout_rms).key("noise_rms").value(u.noise_rms);
+    w.key("unit").value(kChannelUnits[u.channel]);
+    w.key("p_value").value(u.p_value).key("signature").value(signatureName(u.signature));
+    w.key("partial_fits").beginArray();
+    for (const PartialFit& f : u.partial_fits) partialFitJson(w, f);
+    w.endArray().endObject();
+  }
+  w.endArray();
+  w.key("partial_fits").beginArray();
+  for (const PartialFit& f : d.partial_fits) partialFitJson(w, f);
   w.endArray();
   w.key("candidates").beginArray();
   for (const CandidateResult& c : d.candidates) {
@@ -204,7 +269,10 @@ void inertialReport(std::ostream& out, const InertialResult& r) {
 std::string diagnosisReport(const Diagnosis& d) {
   std::ostringstream out;
   out << "# Diagnosis\n\n";
-  if (d.causes.empty()) {
+  if (d.causes.empty() && !d.unexplained.empty()) {
+    out << "The model's predictions disagree with the measurements beyond the noise: "
+        << unexplainedSentence(d) << ".\n\n";
+  } else if (d.causes.empty()) {
     out << "The model's predictions agree with the measurements within the noise: no candidate "
            "effect is significant at 1 % with a held-out gain.\n\n";
   } else {
@@ -235,7 +303,8 @@ std::string diagnosisReport(const Diagnosis& d) {
     out << "; predictions on held-out steps improve by " << fmt(d.effect_channels_pct, "%.0f")
         << " % on the channels the causes act on (" << fmt(d.overall_pct, "%.0f")
         << " % over all channels, " << fmt(d.rms_reduction_pct[channel], "%.0f")
-        << " % on that channel).\n\n";
+        << " % on that channel)"
+        << (d.unexplained.empty() ? "" : "; " + unexplainedSentence(d)) << ".\n\n";
   }
   out << "## Causes\n\n";
   for (const Cause& c : d.causes) {
@@ -253,6 +322,14 @@ std::string diagnosisReport(const Diagnosis& d) {
     out << "\n";
   }
   if (d.causes.empty()) out << "none\n";
+  out << "\n## Not explained\n\n";
+  for (const Unexplained& u : d.unexplained)
+    out << "- `" << kChannelNames[u.channel] << "`: held-out RMS " << fmt(u.heldout_rms) << " "
+        << kChannelUnits[u.channel] << " against noise " << fmt(u.noise_rms) << ", p = "
+        << fmt(u.p_value, "%.2g") << ", follows: " << signatureName(u.signature) << "\n";
+  if (d.unexplained.empty()) out << "none: no channel keeps a significant structured residual\n";
+  if (!d.partial_fits.empty()) out << "\nLibrary candidates that are not causes:\n\n";
+  for (const PartialFit& f : d.partial_fits) out << "- " << f.reason << "\n";
   out << "\n## Held-out steps: RMS per channel (nominal → extended)\n\n"
          "| channel | unit | nominal | extended | reduction % |\n|---|---|---|---|---|\n";
   for (int c = 0; c < kNumChannels; ++c)

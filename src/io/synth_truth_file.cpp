@@ -22,6 +22,12 @@ std::string synthTruthJson(const std::string& robot_path, const std::string& gai
     w.key("value").value(e.value).key("unit").value(effectInfo(e.kind).unit);
     w.endObject();
   }
+  w.endArray().key("unmodelled").beginArray();
+  for (const UnmodelledEffect& e : o.unmodelled) {
+    w.beginObject().key("effect").value(unmodelledName(e.kind));
+    w.key("joint").value(kPhysicalJointNames[e.joint]).key("value").value(e.value);
+    w.key("unit").value(unmodelledUnit(e.kind)).endObject();
+  }
   w.endArray().endObject();
   return w.str() + "\n";
 }

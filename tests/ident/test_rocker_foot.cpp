@@ -23,10 +23,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-const GaitFile& gait() {
-  static const GaitFile g = loadGaitFile(test::sourcePath("configs/gait/default_step.yaml"));
-  return g;
-}
+const GaitFile& gait() { return test::defaultStepGait(); }
 
 MeasuredData synth(const std::vector<Effect>& effects, std::uint64_t seed, int steps, bool noise) {
   SynthOptions o;

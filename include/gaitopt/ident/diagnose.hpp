@@ -11,7 +11,8 @@
 // (samples within edge_trim of a phase boundary left out: the smoothing differentiator is
 // one-sided there) and the double-support ds_foot2_z; double-support dynamics are reported but
 // not fitted (a 40 ms phase is too short to differentiate quantised angles twice).
-// Selection: lowest BIC; accepted when an F-type test (Δ weighted RSS over the residual
+// Selection: by increasing BIC, the first refined candidate accepted when an F-type test
+// (Δ weighted RSS over the residual
 // variance, inflated by the residual autocorrelation: effective sample size n/φ,
 // φ = 1 + 2 Σ_k ρ_k) gives p < significance AND the held-out error decreases. Candidates whose
 // fit is statistically indistinguishable from the best and
@@ -26,6 +27,12 @@
 // of the accepted effects by physically consistent weighted least squares, accepted by the
 // same tests with r = rank degrees of freedom (χ²_r); then a backward step drops the accepted
 // named effects it makes insignificant and refits the rest.
+// Not over-reaching: a cause must be admissible (ident/admissible_range.hpp; an encoder offset
+// also above the data's angle resolution; the inertial fit with no consistency constraint
+// binding), its value at the converged model still significant, and it must leave no
+// significant structured residual (ident/structured_residual.hpp) on a channel it acts on;
+// otherwise it is a partial fit. `unexplained`: the channels whose held-out residual is still
+// structured after the causes, with the partial fits that act on them.
 // Gain: effect_channels_pct, on the channels the causes act on (those carrying 90 % of the
 // noise-normalised change in the held-out predictions); overall_pct over every channel.
 #include <functional>
@@ -52,6 +59,15 @@ struct DiagnoseOptions {
   // RMS over all channels by this much [%]: a few-% gain is what such a flexible fit gets from
   // the smoothing bias of a large named effect (a 4 cm foot offset gave 1.7 %).
   double min_inertial_gain = 5.0;
+  // A channel's held-out residual is structured (not explained) when its cross-step prediction
+  // (ident/structured_residual.hpp) is significant and removes at least this much of its RMS [%].
+  double min_unexplained_gain = 30.0;
+  // A cause must leave less structure than this on the channels it acts on [%]: a combination of
+  // library effects can mimic most of an effect outside the library.
+  double min_overreach_gain = 20.0;
+  // ... and an unexplained structure must exceed this share of the channel's measured torque or
+  // reaction RMS (encoder quantisation alone leaves a few-% structure in the reactions).
+  double unexplained_signal_share = 0.05;
   int max_causes = 3;
   double edge_trim = 0.03;         // [s]
   PreprocessOptions preprocess;
@@ -93,11 +109,36 @@ struct Cause {
   std::vector<std::string> confounded_with;
 };
 
+// What an unexplained residual follows best (ident/structured_residual.hpp).
+enum class Signature { JointAngle, Velocity, Acceleration, Torque, TorqueShift, None };
+const char* signatureName(Signature s);  // "joint angle", …, "none"
+
+// A library candidate that reduces a residual but is not its cause: its fitted value is outside
+// its physical range (ident/admissible_range.hpp), or it leaves a significant structured residual
+// on a channel it acts on.
+struct PartialFit {
+  Effect effect;
+  double p_value = 1.0;
+  std::string reason;
+  std::vector<int> channels;  // the channels it acts on
+};
+
+// A channel whose held-out residual, after the causes, is still significant and structured.
+struct Unexplained {
+  int channel = 0;
+  int joint = kNoJoint;  // the physical joint of a joint-torque channel
+  double heldout_rms = 0.0, noise_rms = 0.0, p_value = 1.0;
+  Signature signature = Signature::None;
+  std::vector<PartialFit> partial_fits;  // candidates acting on this channel that are not causes
+};
+
 struct Diagnosis {
   std::vector<char> holdout_rows, fit_rows;
   ChannelReport nominal_all, nominal, extended;  // nominal_all: every step; others: held out
   std::vector<CandidateResult> candidates;       // first round, every candidate
   std::vector<Cause> causes;
+  std::vector<Unexplained> unexplained;  // by channel
+  std::vector<PartialFit> partial_fits;  // every candidate rejected as a cause
   RobotParams extended_robot;
   ResidualMatrix nominal_residuals, extended_residuals;  // every sample
   std::array<double, kNumChannels> rms_reduction_pct{};

@@ -119,6 +119,18 @@ double signalInflation(const std::vector<Entry>& entries, const Eigen::VectorXd&
 double bestChannelGain(const std::vector<Entry>& entries, const Eigen::VectorXd& before,
                        const Eigen::VectorXd& after);
 
+// The channels carrying 90 % of the noise-normalised change from `before` to `after` (weighted
+// residuals of `entries`), and the reduction of their noise-normalised RMS [%].
+std::pair<std::vector<int>, double> effectChannels(const std::vector<Entry>& entries,
+                                                   const Eigen::VectorXd& before,
+                                                   const Eigen::VectorXd& after);
+
+// The channels a model change acts on: those where the residuals `after` differ from `before`
+// by at least `share` of before's RMS on that channel (per channel, so that a channel of few
+// entries, like the double-support closure, counts as much as one of many).
+std::vector<int> actingChannels(const std::vector<Entry>& entries, const Eigen::VectorXd& before,
+                                const Eigen::VectorXd& after, double share);
+
 // Progress of the diagnosis (DiagnoseOptions::on_progress) over its stages: the nominal
 // residuals, the screening, one per selection round, the inertial stage.
 struct StageProgress {

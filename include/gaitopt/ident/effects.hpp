@@ -53,6 +53,9 @@ struct Effect {
 std::string jointName(int joint);  // "knee_left".."knee_right", "alpha", or "" for none
 std::string effectLabel(const Effect& e);  // "coulomb@knee_right"
 
+// The VALUE of a spec: a finite number, all of `text` (std::invalid_argument otherwise).
+double parseEffectValue(const std::string& text);
+
 // Parses "NAME[@JOINT]=VALUE" (std::invalid_argument with the reason on a bad spec).
 Effect parseEffectSpec(const std::string& spec);
 

@@ -5,6 +5,7 @@
 // held-out error); the lowest BIC accepted when significant, better on the held-out steps and
 // of practical gain; candidates indistinguishable from it recorded as confounded.
 #include <array>
+#include <string>
 #include <vector>
 
 #include "gaitopt/ident/diagnosis_fit.hpp"
@@ -17,6 +18,7 @@ struct Selection {
   std::array<double, kNumChannels> sigma;  // noise levels of the last model tested
   std::vector<CandidateResult> candidates;  // first round, every candidate
   std::vector<Cause> causes;                // with the values of `model`
+  std::vector<PartialFit> rejected;         // candidates that are not causes, and why
 };
 
 // Every (effect, physical joint) candidate of the options' kinds that the data can show.
@@ -27,5 +29,15 @@ std::vector<Effect> candidateEffects(const DiagnoseOptions& o, const MeasuredDat
 Selection selectCauses(const Context& ctx, const Linearisation& lin,
                        const std::array<double, kNumChannels>& sigma, const DiagnoseOptions& o,
                        const StageProgress& progress);
+
+// Selection that does not over-reach: causes no longer significant at the final model are
+// dropped; a cause that leaves a significant structured residual
+// (ident/structured_residual.hpp) on a channel it acts on is not the cause of that residual: it
+// moves to `rejected` and the remaining causes are refitted, until every cause passes.
+void dropOverreaching(const Context& ctx, const Linearisation& lin, Selection& sel,
+                      const DiagnoseOptions& o);
+
+// Names of `channels`, comma-separated.
+std::string channelList(const std::vector<int>& channels);
 
 }  // namespace gaitopt::diagnosis

@@ -20,6 +20,28 @@
 
 namespace gaitopt {
 
+// Effects OUTSIDE the library of `diagnose` (ident/effects.hpp), physically motivated, to
+// test that a diagnosis reports what it cannot explain instead of a confident wrong cause:
+//  - knee_centre@KNEE = c [m/rad]: the knee is not a pure hinge, its centre of rotation moves
+//    along the femur as the knee flexes (rolling–gliding condyles; the instantaneous axis moves
+//    about 2 cm over 70° of flexion): ∂p_K/∂q_k = c (1 + flexion / 1 rad) along the femur. Its
+//    generalised force F_K · ∂p_K/∂q_k — F_K the force the femur exerts on the tibia, from the
+//    ground reaction and the tibia's weight (the tibia's own acceleration neglected) — is added
+//    to that knee's torque. First order in the excursion: the angles stay the revolute knee's.
+//  - joint_compliance@JOINT = K [N·m/rad]: series elasticity between the motor and the link; the
+//    encoder reads the link angle + Γ*/K.
+enum class UnmodelledKind { KneeCentre, JointCompliance };
+constexpr int kNumUnmodelledKinds = 2;
+struct UnmodelledEffect {
+  UnmodelledKind kind = UnmodelledKind::KneeCentre;
+  int joint = 0;  // physical joint (a knee for knee_centre)
+  double value = 0.0;
+};
+const char* unmodelledName(UnmodelledKind kind);  // "knee_centre", "joint_compliance"
+const char* unmodelledUnit(UnmodelledKind kind);
+// Parses "NAME@JOINT=VALUE" (std::invalid_argument with the reason on a bad spec).
+UnmodelledEffect parseUnmodelledSpec(const std::string& spec);
+
 struct SynthOptions {
   int steps = 20;
   double rate = 500.0;           // sample rate [Hz]
@@ -29,6 +51,7 @@ struct SynthOptions {
   double torque_noise = 0.3;     // standard deviation [N·m]
   double force_noise = 2.0;      // standard deviation [N]
   double variation = 1.0;        // scale of the per-step random gait variation (0: none)
+  std::vector<UnmodelledEffect> unmodelled;  // effects outside the library, see above
 };
 
 // Throws std::runtime_error when no variation of the gait gives a step the TRUE model walks
@@ -42,6 +65,11 @@ MeasuredData synthesize(const RobotParams& robot, const GaitParameters& gait,
 // torque_gain 0.85–0.95 or 1.05–1.2, encoder_offset ±0.01–0.05 rad (joints or alpha), backlash
 // 0.01–0.04 rad, payload 2–8 kg, trunk_com ±0.02–0.05 m, slope 0.01–0.04 rad): hidden-effect
 // tests of identification pipelines.
-Effect randomEffect(EffectKind kind, std::mt19937_64& rng);
+// `low` = true: magnitudes in the lowest quarter of those ranges (the short, noisy profile).
+Effect randomEffect(EffectKind kind, std::mt19937_64& rng, bool low = false);
+
+// An unmodelled effect with a seeded random joint and magnitude: knee_centre 0.01–0.02 m/rad,
+// joint_compliance 2000–4000 N·m/rad (`low`: the weakest quarter of each range).
+UnmodelledEffect randomUnmodelled(UnmodelledKind kind, std::mt19937_64& rng, bool low = false);
 
 }  // namespace gaitopt
