@@ -44,12 +44,20 @@ void applyPerturbation(const std::string& text, WalkRequest& req) {
                                                 printable(text) + "'");
   const double v = *parsed;
   const std::string kind = text.substr(0, eq);
+  // A perturbation the closed loop could recover from at all: a few rad/s of α̇, a fraction of
+  // a radian of a coordinate (larger ones only say the robot falls, after minutes of CVODE).
+  const double limit = kind == "alphad" ? 5.0 : 0.5;
+  if (kind != "slope" && std::abs(v) > limit)
+    throw CLI::ValidationError("--perturb", printable(kind) + " must be within [-" +
+                                                shortNumber(limit) + ", " + shortNumber(limit) +
+                                                "] " + (kind == "alphad" ? "rad/s" : "rad") +
+                                                ", got '" + printable(text) + "'");
   if (kind == "alphad") {
     req.dalphad0 += v;
   } else if (kind == "slope") {
     if (std::abs(req.ground_slope + v) >= 0.5)
       throw CLI::ValidationError("--perturb", "slope must be within (-0.5, 0.5) rad, got '" +
-                                                  text + "'");
+                                                  printable(text) + "'");
     req.ground_slope += v;
   } else if (coordinate.count(kind)) {
     req.dq0(coordinate.at(kind)) += v;

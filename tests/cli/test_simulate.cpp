@@ -65,6 +65,15 @@ TEST_CASE("gaitopt simulate CLI: outputs, outcome, bad input", "[sim]") {
                quoted(dir.fresh("bad")));
   CHECK(run.exit_code == 2);
   CHECK_THAT(run.err, Catch::Matchers::Contains("slope must be within (-0.5, 0.5) rad"));
+  run = runCli("simulate --gait " + quoted(gait) + " --perturb alphad=1e30 --out " +
+               quoted(dir.fresh("bad")));
+  CHECK(run.exit_code == 2);
+  CHECK_THAT(run.err, Catch::Matchers::Contains("alphad must be within [-5, 5] rad/s, got "
+                                                "'alphad=1e30'"));
+  run = runCli("simulate --gait " + quoted(gait) + " --perturb delta3=-0.7 --out " +
+               quoted(dir.fresh("bad")));
+  CHECK(run.exit_code == 2);
+  CHECK_THAT(run.err, Catch::Matchers::Contains("delta3 must be within [-0.5, 0.5] rad"));
 }
 
 }  // namespace gaitopt::test
