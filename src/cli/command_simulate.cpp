@@ -47,7 +47,7 @@ void applyPerturbation(const std::string& text, WalkRequest& req) {
   // A perturbation the closed loop could recover from at all: a few rad/s of α̇, a fraction of
   // a radian of a coordinate (larger ones only say the robot falls, after minutes of CVODE).
   const double limit = kind == "alphad" ? 5.0 : 0.5;
-  if (kind != "slope" && std::abs(v) > limit)
+  if ((kind == "alphad" || coordinate.count(kind)) && std::abs(v) > limit)
     throw CLI::ValidationError("--perturb", printable(kind) + " must be within [-" +
                                                 shortNumber(limit) + ", " + shortNumber(limit) +
                                                 "] " + (kind == "alphad" ? "rad/s" : "rad") +
