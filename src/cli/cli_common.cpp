@@ -67,24 +67,24 @@ void requireSampleRows(const std::string& options, double steps, double step_dur
 }
 
 std::function<bool(const std::string&)> ourOutputs(const SolverSettings* solver) {
-  std::string ipopt_output;
+  std::vector<std::string> names = {"summary.json", "gait.yaml", "trajectory.csv", "sweep.csv"};
   if (solver) {
     for (const auto& [key, value] : solver->ipopt_options)
-      if (key == "output_file") ipopt_output = value;
+      if (key == "output_file") names.push_back(value);
   }
-  return [ipopt_output](const std::string& name) {
+  const std::function<bool(const std::string&)> files = ourFiles(std::move(names));
+  return [files](const std::string& name) {
     const bool speed_folder = name.size() > 1 && name[0] == 'v' &&
                               name.find_first_not_of("0123456789.", 1) == std::string::npos;
-    // A figure `gaitopt plot` made of the old result goes with it (docs/commands/plot.md).
-    return name == "summary.json" || name == "gait.yaml" || name == "trajectory.csv" ||
-           name == "sweep.csv" || speed_folder || (!ipopt_output.empty() && name == ipopt_output) ||
-           isPlotFigure(name);
+    return speed_folder || files(name);
   };
 }
 
 std::function<bool(const std::string&)> ourFiles(std::vector<std::string> names) {
+  // A figure `gaitopt plot` made of the old result goes with it (docs/commands/plot.md).
+  for (std::string& figure : plotFigureNames()) names.push_back(std::move(figure));
   return [names = std::move(names)](const std::string& name) {
-    return std::find(names.begin(), names.end(), name) != names.end() || isPlotFigure(name);
+    return std::find(names.begin(), names.end(), name) != names.end();
   };
 }
 

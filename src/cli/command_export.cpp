@@ -124,6 +124,8 @@ void registerExportCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str()
       ->check(CLI::IsMember({"stop", "none"}));
   cmd->callback([args, &exit_code]() {
+    if (!args->library.empty() && !(args->overrides.robot.empty() && args->overrides.set.empty()))
+      throw CLI::ValidationError("--robot, --set", "override the --gait file, not a --library");
     if (!args->library.empty()) return exportLibrary(*args, exit_code);
     const GaitFile gait =
         loadGaitFileWithOverrides(args->gait, overridesOf(args->overrides, nullptr));

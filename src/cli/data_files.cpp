@@ -35,11 +35,10 @@ std::vector<std::string> kinds(const fs::path& dir) {
   return names;
 }
 
-bool isPlotFigure(const std::string& name) {
-  const fs::path p(name);
-  if (p.extension() != ".png") return false;
-  const std::vector<std::string> known = kinds(scriptsDir());
-  return std::find(known.begin(), known.end(), p.stem().string()) != known.end();
+std::vector<std::string> plotFigureNames() {
+  std::vector<std::string> names = kinds(scriptsDir());
+  for (std::string& kind : names) kind += ".png";
+  return names;
 }
 
 void addRobotOption(CLI::App* cmd, std::string& target) {

@@ -21,8 +21,8 @@ std::filesystem::path dataDirectory();
 std::filesystem::path scriptsDir();
 // Figure kinds: the scripts KIND.py of `dir` (files starting with '_' are helpers), sorted.
 std::vector<std::string> kinds(const std::filesystem::path& dir);
-// A figure `gaitopt plot` writes into a run folder by default: KIND.png of a known kind.
-bool isPlotFigure(const std::string& name);
+// The figures `gaitopt plot` writes into a run folder by default: KIND.png of each known kind.
+std::vector<std::string> plotFigureNames();
 
 // `--robot FILE`: empty `target` when not given (robotOrDefault then names the default).
 void addRobotOption(CLI::App* cmd, std::string& target);

@@ -62,6 +62,12 @@ TEST_CASE("gaitopt export --robot --set: the embedded gait is the one exported",
   CHECK_THAT(json, Contains("\"overrides\": \"options.friction_coefficient=0.55\""));
   CHECK_THAT(json, Contains("with the overrides of metadata.overrides"));
   CHECK_THAT(json, Contains("friction_coefficient: 0.55"));
+  // A library is a sweep's gaits as optimised: nothing to override.
+  const test::CliRun library = runCli("export --library " + test::quoted(dir.dir().string()) +
+                                      " --set options.ss_nodes=24 --format json --out " +
+                                      test::quoted(dir.fresh("lib") + ".json"));
+  CHECK(library.exit_code == 2);
+  CHECK_THAT(library.err, Contains("--robot, --set: override the --gait file, not a --library"));
 }
 
 TEST_CASE("a run folder with the figures of its result is replaced by a re-run", "[rerun]") {
