@@ -31,7 +31,7 @@ void registerSynthCommand(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "synth",
       "Synthesise measured walking data (CSV for `gaitopt diagnose`) from the robot plus hidden "
-      "effects; writes FILE and FILE.truth.json. Exit 2: bad input; 3: the TRUE model cannot "
+      "effects; writes FILE with the hidden truth (JSON) as its '#' comment lines. Exit 2: bad input; 3: the TRUE model cannot "
       "walk the gait.");
   cmd->add_option("--robot", args->robot, "Nominal robot YAML file")->required();
   cmd->add_option("--gait", args->gait, "Gait YAML file (its parameters and options)")->required();
@@ -75,7 +75,6 @@ void registerSynthCommand(CLI::App& app, int& exit_code) {
     args->options.noise = args->noise == "default";
     OutputTransaction output({{"--robot", args->robot}, {"--gait", args->gait}});
     const std::string csv = output.file("--out", args->out);
-    const std::string truth = output.file("--out's truth file", args->out + ".truth.json");
     MeasuredData data;
     try {
       data = synthesize(robot, gait.parameters, gait.options, gait.model_options, effects,
@@ -85,8 +84,8 @@ void registerSynthCommand(CLI::App& app, int& exit_code) {
       exit_code = kExitUndefined;
       return;
     }
-    writeNewFile(csv, measuredCsv(data));
-    writeNewFile(truth, synthTruthJson(args->robot, args->gait, effects, args->options));
+    writeNewFile(csv, measuredCsv(data, synthTruthJson(args->robot, args->gait, effects,
+                                                      args->options)));
     output.commit();
     std::cout << "synth: " << args->options.steps << " steps, " << data.size() << " samples, "
               << effects.size() << " effect(s) -> " << args->out << "\n";

@@ -21,6 +21,8 @@ const std::array<const char*, 9> kRequired = {"t",      "alpha",  "delta1", "del
 const std::array<const char*, 4> kTorque = {"gamma1", "gamma2", "gamma3", "gamma4"};
 const std::array<const char*, 4> kReactions = {"R1x", "R1z", "R2x", "R2z"};
 
+bool isComment(const std::string& line) { return !line.empty() && line[0] == '#'; }
+
 std::vector<std::string> splitCsvLine(std::string line) {
   if (!line.empty() && line.back() == '\r') line.pop_back();
   std::vector<std::string> cells = splitFields(line);
@@ -28,15 +30,19 @@ std::vector<std::string> splitCsvLine(std::string line) {
   return cells;
 }
 
-// Locates errors: "<file>:<line>: row <r>, column '<c>': <problem>" (row 1 = first data row).
+// Locates errors: "<file>:<line>: row <r>, column '<c>': <problem>" (row 1 = first data row,
+// the line after the header, which comment lines may precede).
 class CsvContext {
  public:
-  explicit CsvContext(std::string file) : file_(std::move(file)) {}
+  CsvContext(std::string file, int header_line) : file_(std::move(file)), header_(header_line) {}
   ConfigError error(int line, const std::string& column, const std::string& problem) const {
     const std::string where =
-        line > 1 ? "row " + std::to_string(line - 1) + ", column '" + column + "': "
-                 : "column '" + column + "': ";
+        line > header_ ? "row " + std::to_string(line - header_) + ", column '" + column + "': "
+                       : "column '" + column + "': ";
     return ConfigError(file_, "", line, where + problem);
+  }
+  ConfigError headerError(const std::string& column, const std::string& problem) const {
+    return error(header_, column, problem);
   }
   ConfigError fileError(const std::string& problem) const {
     return ConfigError(file_, "", 0, problem);
@@ -44,6 +50,7 @@ class CsvContext {
 
  private:
   std::string file_;
+  int header_;
 };
 
 class RowReader {
@@ -77,7 +84,7 @@ bool optionalGroup(const CsvContext& ctx, const std::map<std::string, int>& colu
   for (const char* n : names) present += columns.count(n);
   if (present != 0 && present != N)
     for (const char* n : names)
-      if (!columns.count(n)) throw ctx.error(1, n, "missing: give all of its group or none");
+      if (!columns.count(n)) throw ctx.headerError(n, "missing: give all of its group or none");
   return present == N;
 }
 
@@ -90,12 +97,12 @@ std::map<std::string, int> readHeader(const CsvContext& ctx, const std::string& 
       const std::size_t n = group == kRequired.data() ? kRequired.size() : 4;
       for (std::size_t k = 0; k < n; ++k) known = known || names[i] == group[k];
     }
-    if (!known) throw ctx.error(1, printable(names[i]), "unknown column");
+    if (!known) throw ctx.headerError(printable(names[i]), "unknown column");
     if (!columns.emplace(names[i], static_cast<int>(i)).second)
-      throw ctx.error(1, names[i], "duplicate column");
+      throw ctx.headerError(names[i], "duplicate column");
   }
   for (const char* n : kRequired)
-    if (!columns.count(n)) throw ctx.error(1, n, "missing required column");
+    if (!columns.count(n)) throw ctx.headerError(n, "missing required column");
   return columns;
 }
 
@@ -170,18 +177,20 @@ void checkTimeGaps(const CsvContext& ctx, const MeasuredData& d, const std::vect
 }  // namespace
 
 MeasuredData readMeasuredCsv(const std::string& path) {
-  const CsvContext ctx(path);
   // Size limit, NUL bytes refused and CR dropped as for the other tables (tab_text.hpp).
   const std::vector<std::string> text = readTableLines(path);
-  if (text.empty()) throw ctx.fileError("empty file: expected a header row");
-  const std::map<std::string, int> columns = readHeader(ctx, text[0]);
+  std::size_t header = 0;
+  while (header < text.size() && isComment(text[header])) ++header;
+  const CsvContext ctx(path, static_cast<int>(header) + 1);
+  if (header == text.size()) throw ctx.fileError("empty file: expected a header row");
+  const std::map<std::string, int> columns = readHeader(ctx, text[header]);
   MeasuredData d;
   d.has_torque = optionalGroup(ctx, columns, kTorque);
   d.has_reactions = optionalGroup(ctx, columns, kReactions);
   if (!d.has_torque && !d.has_reactions)
-    throw ctx.error(1, "gamma1", "no torque (gamma1..gamma4) and no reaction (R1x..R2z) columns");
+    throw ctx.headerError("gamma1", "no torque (gamma1..gamma4) and no reaction (R1x..R2z) columns");
   std::vector<int> lines;
-  for (std::size_t i = 1; i < text.size(); ++i) {
+  for (std::size_t i = header + 1; i < text.size(); ++i) {
     const std::string& line = text[i];
     const int number = static_cast<int>(i) + 1;
     if (line.empty()) continue;
@@ -217,8 +226,10 @@ void requirePlausibleTorques(const MeasuredData& data, const RobotParams& robot,
                               formatDouble(envelope) + " N m)");
 }
 
-std::string measuredCsv(const MeasuredData& d) {
+std::string measuredCsv(const MeasuredData& d, const std::string& comment) {
   std::ostringstream out;
+  std::istringstream comment_lines(comment);
+  for (std::string line; std::getline(comment_lines, line);) out << "# " << line << "\n";
   CsvRow header;
   header.texts({"t", "alpha", "delta1", "delta2", "delta3", "delta4", "phase", "stance", "step"});
   if (d.has_torque) header.texts({"gamma1", "gamma2", "gamma3", "gamma4"});

@@ -70,6 +70,26 @@ TEST_CASE("measured data: read back identically, columns in any order", "[ident]
   CHECK(measuredCsv(readMeasuredCsv(write(swapped))) == measuredCsv(d));
 }
 
+TEST_CASE("measured data: comment lines before the header are skipped, rows still counted",
+          "[ident][io]") {
+  const MeasuredData d = readMeasuredCsv(write(validRows()));
+  const std::string with_comment = measuredCsv(d, "{\n  \"seed\": 5\n}\n");
+  CHECK(with_comment.rfind("# {\n#   \"seed\": 5\n# }\nt,alpha,", 0) == 0);
+  CHECK(measuredCsv(readMeasuredCsv(write({with_comment}))) == measuredCsv(d));
+  // Errors keep the file's line and count rows from the header: row 7 is line 3 + 1 + 7.
+  std::vector<std::string> rows = validRows();
+  rows[7] = "0.012,nan,-2.9,-3.1,0.2,-2.8,SS,left,0,1,400,0,0";
+  rows.insert(rows.begin(), {"# a", "#", "# c"});
+  requireBad(rows, ":11: row 7, column 'alpha': not a finite number");
+  rows[3] = "t,alpha,delta1,delta2,delta3,delta4,phase,stance,step,R1x,R1z,R2x,R2y";
+  requireBad(rows, ":4: column 'R2y': unknown column");
+  // Only before the header: a '#' line among the rows is a bad row.
+  rows = validRows();
+  rows.insert(rows.begin() + 5, "# late");
+  requireBad(rows, ":6: row 5");
+  requireBad({"# only a comment"}, "empty file: expected a header row");
+}
+
 TEST_CASE("measured data: bad data is reported at its row and column", "[ident][io]") {
   std::vector<std::string> rows = validRows();
   SECTION("missing required column") {

@@ -8,6 +8,7 @@ trajectory (kinematics by finite differences, Newton's and Euler's laws for the 
 the criterion by quadrature, the geometry of the links). The CLI only makes the measured data
 of the diagnosis.
 """
+import json
 import os
 import subprocess
 import sys
@@ -294,8 +295,13 @@ def test_diagnose(binary, scratch):
     check(len(causes) == 1 and causes[0][:2] == ("torque_offset", "knee_left") and abs(causes[0][2] + 3.0) < 0.1,
           f"diagnose(): the -3 N m knee_left offset found {causes}")
     with open(data) as f:
-        column = f.readline().strip().split(",").index("step")
-    steps = np.loadtxt(data, delimiter=",", skiprows=1, usecols=column, dtype=int)
+        lines = f.read().splitlines()
+    truth = json.loads("\n".join(line[2:] for line in lines if line.startswith("#")))
+    check(truth["effects"] == [{"effect": "torque_offset", "joint": "knee_left", "value": -3, "unit": "N·m"}]
+          and not os.path.exists(data + ".truth.json"), f"synth: the truth heads the CSV as '#' lines {truth}")
+    header = next(line for line in lines if not line.startswith("#"))
+    column = header.split(",").index("step")
+    steps = np.loadtxt(data, delimiter=",", comments="#", skiprows=lines.index(header) + 1, usecols=column, dtype=int)
     held = result["holdout_rows"]
     check(len(held) == len(steps) and not np.any(held & result["fit_rows"]),
           "diagnose(): held-out and fit rows, one per sample, disjoint")

@@ -1,6 +1,7 @@
 #pragma once
 // The CSV file of measured walking data (ident/measured_data.hpp): one row per sample, a
-// header row, SI units, radians.
+// header row, SI units, radians. Lines starting with '#' before the header row are comments
+// (`gaitopt synth` writes its hidden truth there, so that data and truth are one file).
 // Required columns t, alpha, delta1..delta4, phase (SS/DS), stance (left/right: the physical
 // leg that is leg 1 of the thesis convention at that sample), step (integer, increasing);
 // optional gamma1..gamma4 (measured joint-side motor torques Γ*, motor order) and
@@ -40,7 +41,8 @@ MeasuredData readMeasuredCsv(const std::string& path);
 void requirePlausibleTorques(const MeasuredData& data, const RobotParams& robot,
                              const std::string& path);
 
-// The CSV text (header then rows, full precision); readMeasuredCsv reads it back identically.
-std::string measuredCsv(const MeasuredData& data);
+// The CSV text (each line of `comment` as a "# " line, then the header and the rows, full
+// precision); readMeasuredCsv reads it back identically.
+std::string measuredCsv(const MeasuredData& data, const std::string& comment = "");
 
 }  // namespace gaitopt

@@ -1,5 +1,6 @@
 #pragma once
-// The truth file `gaitopt synth` writes next to its synthetic measurements (ident/synth.hpp).
+// The hidden truth `gaitopt synth` writes with its synthetic measurements (ident/synth.hpp): a
+// JSON document, put as the comment lines that head the measured-data CSV (io/measured_data.hpp).
 #include <string>
 #include <vector>
 
@@ -7,7 +8,7 @@
 
 namespace gaitopt {
 
-// FILE.truth.json: the hidden truth (effects with values and units, seed, noise, steps).
+// The hidden truth (effects with values and units, seed, noise, steps) as JSON.
 std::string synthTruthJson(const std::string& robot_path, const std::string& gait_path,
                            const std::vector<Effect>& effects, const SynthOptions& options);
 
