@@ -6,6 +6,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "gaitopt/ident/admissible_range.hpp"
 #include "gaitopt/ident/synth.hpp"
 #include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/config_error.hpp"
@@ -23,6 +24,25 @@ struct SynthArgs {
   std::vector<std::string> effects, unmodelled;
   SynthOptions options;
 };
+
+// The VALUE of a spec in the one number syntax of the command line (the spec parsers take any
+// stod).
+void requireDecimalValue(const char* option, const std::string& spec) {
+  const std::size_t eq = spec.find('=');
+  if (eq != std::string::npos && !parseDecimal(spec.substr(eq + 1)))
+    throw CLI::ValidationError(option, "'" + printable(spec) + "': " +
+                                           decimalProblem(spec.substr(eq + 1)));
+}
+
+// A value beyond what synth generates on the robot (ident/admissible_range.hpp) is refused.
+void requireWithin(const char* option, const std::string& spec, double value,
+                   const AdmissibleRange& range, const std::string& unit) {
+  if (!range.containsClosed(value))
+    throw CLI::ValidationError(option, "'" + printable(spec) + "': outside the range synth "
+                                       "generates on the robot, [" + shortNumber(range.lo) +
+                                       ", " + shortNumber(range.hi) + "] " + unit + ": " +
+                                       range.basis);
+}
 
 }  // namespace
 
@@ -50,27 +70,29 @@ void registerSynthCommand(CLI::App& app, int& exit_code) {
       ->check(integerWithin(0, (std::int64_t{1} << 53) - 1));
   cmd->add_option("--out", args->out, "Output CSV file")->required();
   cmd->callback([args, &exit_code]() {
+    const RobotParams robot = loadRobot(args->robot);
     std::vector<Effect> effects;
     for (const std::string& spec : args->effects) {
-      // The value in the one number syntax of the command line (the parser takes any stod).
-      const std::size_t eq = spec.find('=');
-      if (eq != std::string::npos && !parseDecimal(spec.substr(eq + 1)))
-        throw CLI::ValidationError("--effect", "'" + printable(spec) + "': " +
-                                                   decimalProblem(spec.substr(eq + 1)));
+      requireDecimalValue("--effect", spec);
       try {
         effects.push_back(parseEffectSpec(spec));
       } catch (const std::invalid_argument& e) {
         throw CLI::ValidationError("--effect", "'" + printable(spec) + "': " + e.what());
       }
+      const Effect& e = effects.back();
+      requireWithin("--effect", spec, e.value, synthesisRange(e, robot), effectInfo(e.kind).unit);
     }
     for (const std::string& spec : args->unmodelled) {
+      requireDecimalValue("--unmodelled", spec);
       try {
         args->options.unmodelled.push_back(parseUnmodelledSpec(spec));
       } catch (const std::invalid_argument& e) {
-        throw CLI::ValidationError("--unmodelled", "'" + spec + "': " + e.what());
+        throw CLI::ValidationError("--unmodelled", "'" + printable(spec) + "': " + e.what());
       }
+      const UnmodelledEffect& e = args->options.unmodelled.back();
+      requireWithin("--unmodelled", spec, e.value, unmodelledRange(e, robot),
+                    unmodelledUnit(e.kind));
     }
-    const RobotParams robot = loadRobot(args->robot);
     const GaitFile gait = loadGaitFile(args->gait);
     args->options.noise = args->noise == "default";
     OutputTransaction output({{"--robot", args->robot}, {"--gait", args->gait}});

@@ -91,6 +91,28 @@ AdmissibleRange admissibleRange(const Effect& e, const RobotParams& r) {
   return {-inf, inf, "physically consistent by construction"};
 }
 
+AdmissibleRange synthesisRange(const Effect& e, const RobotParams& r) {
+  const AdmissibleRange a = admissibleRange(e, r);
+  if (e.kind == EffectKind::Inertial) return a;
+  const double neutral = effectInfo(e.kind).factor ? 1.0 : 0.0;
+  AdmissibleRange g{neutral + kSynthesisRangeMultiple * (a.lo - neutral),
+                    neutral + kSynthesisRangeMultiple * (a.hi - neutral),
+                    "the admissible range (" + fmt("%.3g", a.lo) + ", " + fmt("%.3g", a.hi) +
+                        ") stretched " + fmt("%g", kSynthesisRangeMultiple) +
+                        " times about the neutral value, its physical laws kept: " + a.basis};
+  switch (e.kind) {
+    case EffectKind::Coulomb:
+    case EffectKind::Viscous:
+    case EffectKind::Backlash:
+    case EffectKind::RockerFoot: g.lo = a.lo + 0.0; break;  // a law: the total stays >= 0
+    case EffectKind::RotorInertia:
+    case EffectKind::TorqueGain: g.lo = std::max(g.lo, 0.0); break;
+    case EffectKind::Payload: g.lo = std::max(g.lo, -totalMass(r)); break;
+    default: break;
+  }
+  return g;
+}
+
 std::string inadmissibleReason(const Effect& e, const AdmissibleRange& range) {
   const std::string unit = effectInfo(e.kind).unit;
   return effectLabel(e) + " " + fmt("%.3g", e.value) + " " + unit +

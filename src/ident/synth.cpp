@@ -1,11 +1,14 @@
 #include "gaitopt/ident/synth.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <random>
 #include <stdexcept>
 
 #include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/math/decimal.hpp"
 #include "gaitopt/gait/phase_sample.hpp"
 #include "gaitopt/model/dynamics_floating.hpp"
 #include "gaitopt/model/inverse_dynamics.hpp"
@@ -332,6 +335,18 @@ UnmodelledEffect parseUnmodelledSpec(const std::string& spec) {
   e.value = parseEffectValue(spec.substr(eq + 1));
   if (e.value <= 0.0) throw std::invalid_argument(name + " must be > 0");
   return e;
+}
+
+AdmissibleRange unmodelledRange(const UnmodelledEffect& e, const RobotParams& r) {
+  if (e.kind == UnmodelledKind::KneeCentre) {
+    const double femur = std::min(r.l2, r.l4);
+    return {0.0, femur, "the knee centre moves at most a femur length (" + formatDouble(femur) +
+                            " m) per radian"};
+  }
+  const double peak = *std::max_element(r.envelope.torque.begin(), r.envelope.torque.end());
+  return {peak, std::numeric_limits<double>::infinity(),
+          "the peak envelope torque (" + formatDouble(peak) +
+              " N·m) twists the joint at most one radian"};
 }
 
 }  // namespace gaitopt

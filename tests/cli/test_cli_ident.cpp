@@ -110,4 +110,11 @@ TEST_CASE("gaitopt diagnose: bad data stops with exit 2 and writes nothing", "[i
                                       test::quoted(scratch().fresh("never") + ".csv"));
   CHECK(e.exit_code == 2);
   CHECK_THAT(e.err, Contains("unknown effect 'friction'"));
+  // A truth diagnose must refuse as a cause (beyond ±5.6 N·m) is generated.
+  const std::string beyond = scratch().fresh("beyond") + ".csv";
+  const test::CliRun b = test::runCli("synth --robot " + kRobot + " --gait " + kGait +
+                                      " --steps 3 --effect torque_offset@knee_left=12 --out " +
+                                      test::quoted(beyond));
+  CHECK(b.exit_code == 0);
+  CHECK(fs::file_size(beyond) > 10000);
 }

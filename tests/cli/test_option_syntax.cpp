@@ -70,6 +70,15 @@ TEST_CASE("option syntax: numbers are decimal, finite and in range", "[reliabili
        "--effect: 'coulomb@knee_left=0x10': not a decimal number: '0x10'"},
       // Ranges that bound a run's time and memory (docs/reliability.md).
       {synth + "--steps 301", "--steps: must be in [3, 300], got 301"},
+      // Effect values: beyond what synth generates (10 × diagnose's admissible ranges).
+      {synth + "--effect coulomb@knee_left=1e30",
+       "--effect: 'coulomb@knee_left=1e30': outside the range synth generates on the robot, "
+       "[-5.48, 140] N·m: the admissible range (-5.48, 14) stretched 10 times"},
+      {synth + "--effect torque_offset@hip_right=-57", "[-56, 56] N·m"},
+      {synth + "--unmodelled joint_compliance@knee_left=100",
+       "--unmodelled: 'joint_compliance@knee_left=100': outside the range synth generates on "
+       "the robot, [140, inf] N·m/rad: the peak envelope torque (140 N·m) twists the joint"},
+      {synth + "--unmodelled knee_centre@knee_right=0.5", "[0, 0.4] m/rad"},
       {exporter + "--steps 100000 --rate 100000",
        "--steps, --rate: 100000 steps of 0.6"},
       {exporter + "--steps 400 --rate 1000", "rows, more than the limit of 200000"},

@@ -84,6 +84,55 @@ TEST_CASE("admissible ranges follow the robot file", "[ident][admissible]") {
   CHECK_THAT(reason, Contains("trunk length 0.625 m"));
 }
 
+TEST_CASE("synth generates beyond the admissible ranges, within the physical laws",
+          "[ident][admissible]") {
+  const RobotParams& r = gait().robot;  // RABBIT: peak torque 140 N·m, femurs 0.4 m
+  double mass = r.bar.equivalent_mass;
+  for (double m : r.mass) mass += m;
+  for (int k = 0; k < kNumEffectKinds; ++k) {
+    const EffectKind kind = static_cast<EffectKind>(k);
+    if (kind == EffectKind::Inertial) continue;
+    const Effect e{kind, effectInfo(kind).per_joint ? 3 : kNoJoint, 0.0};
+    const AdmissibleRange a = admissibleRange(e, r), g = synthesisRange(e, r);
+    const double neutral = effectInfo(kind).factor ? 1.0 : 0.0;
+    INFO(effectLabel(e) << ": admissible (" << a.lo << ", " << a.hi << "), synth [" << g.lo
+                        << ", " << g.hi << "]");
+    // The upper side stretched 10 times about the neutral value: a truth diagnose must refuse
+    // as a cause (twice its admissible bound) can be generated, 10^30 cannot.
+    CHECK(g.hi - neutral == Approx(kSynthesisRangeMultiple * (a.hi - neutral)));
+    CHECK_FALSE(a.contains(neutral + 2.0 * (a.hi - neutral)));
+    CHECK(g.containsClosed(neutral + 2.0 * (a.hi - neutral)));
+    CHECK_FALSE(g.containsClosed(1e30));
+    CHECK_FALSE(g.containsClosed(-1e30));
+    // The lower side: stretched as well, unless a law bounds it.
+    const double stretched = neutral + kSynthesisRangeMultiple * (a.lo - neutral);
+    switch (kind) {
+      case EffectKind::Coulomb:
+      case EffectKind::Viscous:
+      case EffectKind::Backlash:
+      case EffectKind::RockerFoot: CHECK(g.lo == a.lo); break;  // total >= 0
+      case EffectKind::RotorInertia:
+      case EffectKind::TorqueGain: CHECK(g.lo == 0.0); break;  // a factor > 0
+      case EffectKind::Payload: CHECK(g.lo == Approx(-mass)); break;  // no negative robot
+      default: CHECK(g.lo == Approx(stretched));
+    }
+    CHECK(g.lo <= a.lo);
+  }
+  const AdmissibleRange knee = unmodelledRange({UnmodelledKind::KneeCentre, 0, 0.0}, r);
+  CHECK(knee.lo == 0.0);
+  CHECK(knee.hi == std::min(r.l2, r.l4));
+  const AdmissibleRange compliance = unmodelledRange({UnmodelledKind::JointCompliance, 1, 0.0}, r);
+  CHECK(compliance.lo == 140.0);
+  CHECK(std::isinf(compliance.hi));
+  // Every random effect of the hidden-effect tests is generated.
+  std::mt19937_64 rng(4);
+  for (int i = 0; i < 20; ++i)
+    for (int k = 0; k < kNumUnmodelledKinds; ++k) {
+      const UnmodelledEffect u = randomUnmodelled(static_cast<UnmodelledKind>(k), rng, i % 2);
+      CHECK(unmodelledRange(u, r).containsClosed(u.value));
+    }
+}
+
 TEST_CASE("synth: the unmodelled effects change what they claim to", "[ident][synth]") {
   const MeasuredData base = synth({}, {}, 7, 4, false);
   SECTION("knee_centre: only that knee's torque, more in its stance") {

@@ -15,6 +15,7 @@ struct AdmissibleRange {
   double lo = 0.0, hi = 0.0;
   std::string basis;  // e.g. "±0.25 × trunk length 0.625 m"
   bool contains(double value) const { return value > lo && value < hi; }
+  bool containsClosed(double value) const { return value >= lo && value <= hi; }
 };
 
 // The range of `e`'s kind on `e`'s joint of `robot` (the robot file the data are compared with):
@@ -23,6 +24,16 @@ struct AdmissibleRange {
 // the rocker radius and foot offset against the leg length. The whole real line for `inertial`
 // (its fit is physically consistent by construction).
 AdmissibleRange admissibleRange(const Effect& e, const RobotParams& robot);
+
+// How far beyond the admissible range `gaitopt synth` generates a hidden effect: diagnose's tests
+// need truths it must refuse as causes, not physically absurd ones.
+constexpr double kSynthesisRangeMultiple = 10.0;
+
+// The closed range of values `synth` accepts for `e` on `robot`: the admissible range stretched
+// kSynthesisRangeMultiple times about the neutral value (0, or 1 for a factor), keeping the
+// physical laws among its bounds — total friction, dead band and rocker radius >= 0, factors
+// >= 0 (> 0 by the spec), the robot's total mass >= 0. The whole real line for `inertial`.
+AdmissibleRange synthesisRange(const Effect& e, const RobotParams& robot);
 
 // "trunk_com -0.46 m is outside its physical range (-0.156, 0.156) m: ±0.25 × trunk length …".
 std::string inadmissibleReason(const Effect& e, const AdmissibleRange& range);

@@ -15,6 +15,7 @@
 
 #include "gaitopt/gait/options.hpp"
 #include "gaitopt/gait/parameters.hpp"
+#include "gaitopt/ident/admissible_range.hpp"
 #include "gaitopt/ident/effects.hpp"
 #include "gaitopt/ident/measured_data.hpp"
 
@@ -41,6 +42,10 @@ const char* unmodelledName(UnmodelledKind kind);  // "knee_centre", "joint_compl
 const char* unmodelledUnit(UnmodelledKind kind);
 // Parses "NAME@JOINT=VALUE" (std::invalid_argument with the reason on a bad spec).
 UnmodelledEffect parseUnmodelledSpec(const std::string& spec);
+// The closed range of values `synth` accepts for `e` on `robot`: knee_centre (0, the shorter
+// femur's length per radian]; joint_compliance [the robot's peak envelope torque per radian,
+// ∞) — stiffer than a joint the peak torque twists by one radian.
+AdmissibleRange unmodelledRange(const UnmodelledEffect& e, const RobotParams& robot);
 
 struct SynthOptions {
   int steps = 20;
