@@ -267,12 +267,20 @@ struct Optimization {
 Optimization optimize(const std::string& config_path, const std::optional<std::string>& out) {
   const OptimizeConfig config = loadOptimizeConfig(config_path);
   py::gil_scoped_release release;  // a long run should not block other Python threads
+  // As the CLI: `out` checked before the work, its files published by one rename.
+  OutputTransaction output({{"config", config_path}});
+  const std::string dir =
+      out ? output.directory("out", *out,
+                             std::vector<std::string>{"summary.json", "gait.yaml", "trajectory.csv"}) : "";
   const auto evaluator =
       std::make_shared<const GaitEvaluator>(config.robot, config.options, config.model_options);
   const GaitParameters initial = configuredInitialGuess(config, evaluator->model());
   OptimizationResult r = optimizeGait(*evaluator, optimizationRequest(config, initial), nullptr);
   const OptimizationOutputs outputs = optimizationOutputs(*evaluator, config, r, out.value_or("."));
-  if (out) writeOptimizationOutputs(*out, outputs);
+  if (out) {
+    writeOptimizationOutputs(dir, outputs);
+    output.commit();
+  }
   Evaluation evaluation(evaluator, r.parameters, r.evaluation);
   return Optimization{std::move(r), std::move(evaluation), outputs.gait_yaml};
 }
@@ -414,30 +422,27 @@ py::dict diagnoseData(const std::string& robot_path, const std::string& data_pat
   DiagnoseOptions options;
   options.holdout = holdout;
   Diagnosis d;
-  std::string csv, report, yaml;
+  DiagnosisDocuments documents;
   {
     py::gil_scoped_release release;
+    // As the CLI: `out` checked before the work, its four files published by one rename.
+    OutputTransaction output({{"robot", robot_path}, {"data", data_path}});
+    const std::string dir = out ? output.directory("out", *out, diagnosisFileNames()) : "";
     try {
       d = diagnose(robot, ModelOptions{}, data, options);
     } catch (const std::invalid_argument& e) {
       throw py::value_error(std::string("holdout: ") + e.what());
     }
-    csv = residualsCsv(data, d);
-    report = diagnosisReport(d);
-    yaml = extendedRobotYaml(robot_path, d.extended_robot);
+    documents = diagnosisDocuments(robot_path, data, d);
     if (out) {
-      std::filesystem::create_directories(*out);
-      const std::filesystem::path dir(*out);
-      writeFileAtomically((dir / "diagnosis.json").string(), diagnosisJson(d));
-      writeFileAtomically((dir / "residuals.csv").string(), csv);
-      writeFileAtomically((dir / "report.md").string(), report);
-      writeFileAtomically((dir / "extended_robot.yaml").string(), yaml);
+      writeDiagnosisFiles(dir, documents);
+      output.commit();
     }
   }
   py::dict result = diagnosisDict(d, ModelOptions{});
-  result["report"] = report;
-  result["residuals_csv"] = csv;
-  result["extended_robot_yaml"] = yaml;
+  result["report"] = documents.report;
+  result["residuals_csv"] = documents.residuals_csv;
+  result["extended_robot_yaml"] = documents.extended_robot_yaml;
   return result;
 }
 
@@ -592,7 +597,8 @@ void bindOptimization(py::module_& m) {
       .def_readonly("gait_yaml", &Optimization::gait_yaml, "gait.yaml of the result");
   m.def("optimize", &optimize, py::arg("config"), py::arg("out") = py::none(),
         "Optimise as `gaitopt optimize --config CONFIG`: an OptimizationResult; writes "
-        "summary.json, gait.yaml and trajectory.csv into `out` when given");
+        "summary.json, gait.yaml and trajectory.csv into the folder `out` when given, published "
+        "together (OutputError for an unusable `out`)");
 }
 
 }  // namespace
@@ -605,6 +611,7 @@ PYBIND11_MODULE(gaitopt, m) {
   m.attr("git_describe") = GAITOPT_GIT_DESCRIBE;
   // Bad robot, gait or optimiser files: the reader's message (file:line: key: problem).
   py::register_exception<ConfigError>(m, "ConfigError", PyExc_ValueError);
+  py::register_exception<OutputError>(m, "OutputError", PyExc_ValueError);
   bindRobot(m);
   bindGait(m);
   bindOptimization(m);
@@ -613,7 +620,8 @@ PYBIND11_MODULE(gaitopt, m) {
         "Diagnose a robot model on measured data as `gaitopt diagnose`: the diagnosis' fields "
         "as a dict (causes, candidates, channel reports, residuals as NumPy arrays, "
         "extended_robot as a Robot, ...) plus 'report', 'residuals_csv' and "
-        "'extended_robot_yaml' (texts); writes the four files into `out` when given");
+        "'extended_robot_yaml' (texts); writes the four files into the folder `out` when given, "
+        "published together (OutputError for an unusable `out`)");
   m.def("export", &exportGait, py::arg("gait"), py::arg("steps") = 10, py::arg("rate") = 1000.0,
         py::arg("first_stance") = "left", py::arg("format") = "csv", py::arg("out") = py::none(),
         "Export N steps for a controller as `gaitopt export`: the JSON document as a dict "

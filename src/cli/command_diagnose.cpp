@@ -79,22 +79,17 @@ void registerDiagnoseCommand(CLI::App& app, int& exit_code) {
     const MeasuredData data = readMeasuredCsv(args->data);
     requirePlausibleTorques(data, robot, args->data);
     OutputTransaction output({{"--robot", args->robot}, {"--data", args->data}});
-    const std::filesystem::path dir = output.directory(
-        "--out", args->out,
-        ourFiles({"diagnosis.json", "residuals.csv", "report.md", "extended_robot.yaml"}));
+    const std::string dir = output.directory("--out", args->out, ourFiles(diagnosisFileNames()));
     Diagnosis d;
     try {
       d = diagnose(robot, ModelOptions{}, data, options);
     } catch (const std::invalid_argument& e) {
       throw CLI::ValidationError("--holdout", e.what());
     }
-    const std::string report = diagnosisReport(d);
-    writeNewFile((dir / "diagnosis.json").string(), diagnosisJson(d));
-    writeNewFile((dir / "residuals.csv").string(), residualsCsv(data, d));
-    writeNewFile((dir / "report.md").string(), report);
-    writeNewFile((dir / "extended_robot.yaml").string(),
-                 extendedRobotYaml(args->robot, d.extended_robot));
+    const DiagnosisDocuments documents = diagnosisDocuments(args->robot, data, d);
+    writeDiagnosisFiles(dir, documents);
     output.commit();
+    const std::string& report = documents.report;
     const std::size_t first = report.find("\n\n") + 2;  // the sentence after the title
     std::cout << report.substr(first, report.find('\n', first) - first) << "\n";
     exit_code = 0;

@@ -6,6 +6,7 @@
 
 #include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/json_writer.hpp"
+#include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/robot_extensions.hpp"
 #include "gaitopt/io/yaml_reader.hpp"
 
@@ -371,6 +372,24 @@ std::string extendedRobotYaml(const std::string& robot_path, const RobotParams& 
   emit << root;
   return "# " + robot_path + " extended by gaitopt diagnose with the identified effects\n" +
          std::string(emit.c_str()) + "\n" + robotExtensionsYaml(extended);
+}
+
+DiagnosisDocuments diagnosisDocuments(const std::string& robot_path, const MeasuredData& data,
+                                      const Diagnosis& d) {
+  return {diagnosisJson(d), residualsCsv(data, d), diagnosisReport(d),
+          extendedRobotYaml(robot_path, d.extended_robot)};
+}
+
+std::vector<std::string> diagnosisFileNames() {
+  return {"diagnosis.json", "residuals.csv", "report.md", "extended_robot.yaml"};
+}
+
+void writeDiagnosisFiles(const std::string& dir, const DiagnosisDocuments& documents) {
+  const std::vector<std::string> names = diagnosisFileNames();
+  const std::array<const std::string*, 4> texts = {&documents.json, &documents.residuals_csv,
+                                                   &documents.report,
+                                                   &documents.extended_robot_yaml};
+  for (std::size_t k = 0; k < texts.size(); ++k) writeNewFile(dir + "/" + names[k], *texts[k]);
 }
 
 }  // namespace gaitopt

@@ -227,6 +227,8 @@ def test_optimize(binary, scratch):
     config = load_yaml(CONFIG)
     out = os.path.join(scratch, "opt")
     result = gaitopt.optimize(CONFIG, out=out)
+    check([n for n in os.listdir(scratch) if ".gaitopt-" in n] == [],
+          "optimize(out=...): published, no staging folder left beside it")
     e = result.evaluation
     check(result.status == "optimal" and e.feasible and result.unmet_level is None,
           f"optimize(): {result.status}, feasible {e.feasible}")
@@ -314,6 +316,44 @@ def test_diagnose(binary, scratch):
           "diagnose(): the extended robot keeps the masses")
     check("holdout" in (raises(ValueError, lambda: gaitopt.diagnose(ROBOT, data, holdout=1)) or ""),
           "diagnose(holdout=1) raises ValueError")
+    test_diagnose_out(data, scratch, result)
+
+
+def folder(path):
+    """Every entry under path (hidden ones included) with its content."""
+    entries = {}
+    for parent, dirs, files in os.walk(path):
+        for name in dirs + files:
+            full = os.path.join(parent, name)
+            entries[os.path.relpath(full, path)] = "/" if os.path.isdir(full) else open(full, "rb").read()
+    return entries
+
+
+def test_diagnose_out(data, scratch, result):
+    """diagnose(out=...) publishes its four files together, as the CLI: a failed run leaves the
+    old result and no staging folder; unusable folders raise OutputError with nothing written."""
+    box = os.path.join(scratch, "diagnose_box")
+    os.mkdir(box)
+    out = os.path.join(box, "diagnosis")
+    gaitopt.diagnose(ROBOT, data, holdout=3, out=out)
+    names = sorted(os.listdir(out))
+    check(names == ["diagnosis.json", "extended_robot.yaml", "report.md", "residuals.csv"],
+          f"diagnose(out=): the four files {names}")
+    with open(os.path.join(out, "report.md"), encoding="utf-8") as f:
+        check(f.read() == result["report"], "diagnose(out=): report.md is the returned report")
+    before = folder(box)
+    check(raises(ValueError, lambda: gaitopt.diagnose(ROBOT, data, holdout=1, out=out)) is not None
+          and folder(box) == before, "diagnose(out=) failing mid-way: the old result kept, no staging folder left")
+    check(issubclass(gaitopt.OutputError, ValueError), "OutputError is a ValueError")
+    with open(os.path.join(box, "notes.txt"), "w") as f:
+        f.write("mine\n")
+    before = folder(box)
+    for bad, message in ((box, "which gaitopt did not write"),
+                         ("/", "is the current directory or contains it"),
+                         (os.path.join(box, "notes.txt"), "exists and is not a directory")):
+        error = raises(gaitopt.OutputError, lambda: gaitopt.diagnose(ROBOT, data, out=bad))
+        check(error is not None and message in error and folder(box) == before,
+              f"diagnose(out={bad!r}): OutputError, nothing written: {error!r}")
 
 
 def test_errors(scratch):
