@@ -174,9 +174,8 @@ void registerSweepMerge(CLI::App& app, int& exit_code) {
     for (const std::string& shard : args->shards)
       inputs.push_back({"SHARD_DIR", (fs::path(shard) / "sweep.csv").string()});
     OutputTransaction output(inputs);
+    requireOwnDirectory("--out", args->out);
     std::error_code ec;
-    if (fs::exists(out, ec) && !fs::is_directory(out, ec))
-      throw OutputError("--out '" + args->out + "' exists and is not a directory");
     fs::create_directories(out, ec);
     if (ec) throw OutputError("--out '" + args->out + "' cannot be created: " + ec.message());
     writeNewFile(output.file("--out", (out / "sweep.csv").string()), merged);

@@ -311,6 +311,10 @@ void OutputTransaction::commit() {
   committed_ = true;
 }
 
+void requireOwnDirectory(const std::string& option, const std::string& out) {
+  directoryTarget(option, out);
+}
+
 void writeNewFile(const std::string& path, const std::string& content) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
   if (fd < 0) throw std::runtime_error(systemError("cannot create", path));

@@ -74,6 +74,11 @@ class OutputTransaction {
   bool committed_ = false;
 };
 
+// Throws OutputError when `out`, a directory a result file is written into (`sweep-merge
+// --out DIR` writes DIR/sweep.csv), is empty, a file, `/`, the current directory or one
+// containing it, or has a name over 255 bytes.
+void requireOwnDirectory(const std::string& option, const std::string& out);
+
 // Creates `path` (O_CREAT|O_EXCL|O_NOFOLLOW: never an existing file or a link) with `content`
 // and syncs it; for the files of a staging folder. Throws std::runtime_error on failure.
 void writeNewFile(const std::string& path, const std::string& content);
