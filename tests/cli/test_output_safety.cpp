@@ -1,7 +1,8 @@
 // Output safety of every writing command (docs/reliability.md): bad output locations exit 2
 // naming the problem with nothing written or overwritten anywhere; planted links at final or
 // staging names are never followed; stale staging folders of killed runs are removed by the
-// next run; a run killed at any time leaves the old complete result or the new one.
+// next run; a run killed at any time leaves the old complete result or the new one (every
+// command that writes more than one file, and synth's one file holding data and truth).
 #include <catch2/catch.hpp>
 #include <fcntl.h>
 #include <sys/file.h>
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -33,9 +35,11 @@ ScratchDir& scratch() {
 }
 
 // Every entry under `dir`, hidden ones included, with its content ("-> target" for a link,
-// "/" for a directory): any write, removal or new file shows up as a difference.
+// "/" for a directory): any write, removal or new file shows up as a difference. A file
+// `dir` is the one entry "".
 std::map<std::string, std::string> snapshot(const fs::path& dir) {
   std::map<std::string, std::string> entries;
+  if (fs::is_regular_file(dir)) return {{"", readFile(dir.string())}};
   for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator();
        ++it) {
     const fs::path rel = fs::relative(it->path(), dir);
@@ -57,6 +61,7 @@ struct Sandbox {
     fs::create_directories(dir / "foreign");
     fs::create_directories(dir / "previous");
     std::ofstream(dir / "precious.txt") << "precious\n";
+    std::ofstream(dir / "bad.yaml") << "a: [1, 2\n";  // a YAML flow never closed
     std::ofstream(dir / "foreign" / "notes.txt") << "mine\n";
     std::ofstream(dir / "previous" / "extended_robot.yaml") << readFile(kRobot);
     fs::copy_file(kRobot, dir / "robot.yaml");
@@ -152,6 +157,74 @@ TEST_CASE("output safety: bad output locations of every command", "[reliability]
   }
 }
 
+TEST_CASE("output safety: every command refuses a bad option, a bad file and a bad --out",
+          "[reliability][cli]") {
+  // With the cases of the table above and of test_option_syntax.cpp, each writing command has
+  // a bad option value, a bad input file, --out naming an input, and --out `/` or `.`.
+  const std::string gait = quoted(kGait), robot = quoted(kRobot);
+  const std::string config = quoted(sourcePath("configs/default.yaml"));
+  const std::string run = quoted(sourcePath("tests/data/sample_run"));
+  const std::string q = " --q=-0.4,-2.8415926535897933,-3.3415926535897933,0.50741499796637735,"
+                        "-2.7987334866164235";
+  const std::string evaluate = "evaluate --gait " + gait;
+  const std::string optimize = "optimize --config " + config;
+  const std::string sweep = "sweep --speeds 0.5:0.5:0.1 --config ";
+  const std::string merge = "sweep-merge " + quoted(sourcePath("tests/data/sample_sweep"));
+  const std::string exporter = "export --steps 1 --gait " + gait;
+  const std::string plot = "plot stick " + run;
+  const std::string invalid_yaml = "bad.yaml:2: invalid YAML";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {evaluate + " --sample-rate nan --out o", "--sample-rate: not a finite number: 'nan'"},
+      {"evaluate --gait bad.yaml --out o", invalid_yaml},
+      {evaluate + " --out " + gait, "exists and is not a directory"},
+      {optimize + " --speed nan --out o", "--speed: not a finite number: 'nan'"},
+      {"optimize --config bad.yaml --out o", invalid_yaml},
+      {optimize + " --out " + config, "exists and is not a directory"},
+      {optimize + " --out /", "is the current directory or contains it"},
+      {sweep + config + " --jobs 0x2 --out o", "--jobs: '0x2' is not a whole decimal number"},
+      {sweep + "bad.yaml --out o", invalid_yaml},
+      {sweep + config + " --out " + config, "exists and is not a directory"},
+      {sweep + config + " --out .", "is the current directory or contains it"},
+      {merge + " --out=", "--out=: empty value after '='"},
+      {"sweep-merge foreign --out o", "'foreign/sweep.csv' is missing or not a regular file"},
+      {merge + " --out /", "--out '/' is the current directory or contains it"},
+      {merge + " --out .", "--out '.' is the current directory or contains it"},
+      {merge + " --out precious.txt", "--out 'precious.txt' exists and is not a directory"},
+      {"simulate --gait bad.yaml --out o", invalid_yaml},
+      {"simulate --gait " + gait + " --out " + gait, "exists and is not a directory"},
+      {"stability --gait bad.yaml --out o", invalid_yaml},
+      {"stability --gait " + gait + " --out " + gait, "exists and is not a directory"},
+      {"impact-map --robot bad.yaml --out o" + q, invalid_yaml},
+      {"impact-map --robot robot.yaml --out robot.yaml" + q, "exists and is not a directory"},
+      {"diagnose --holdout 0x3 --robot " + robot + " --data bad.yaml --out o",
+       "--holdout: '0x3' is not a whole decimal number"},
+      {"diagnose --robot " + robot + " --data bad.yaml --out o",
+       "bad.yaml:1: column 'a: [1': unknown column"},
+      {"synth --steps 3 --robot bad.yaml --gait " + gait + " --out o.csv", invalid_yaml},
+      {"synth --steps 3 --robot " + robot + " --gait bad.yaml --out o.csv", invalid_yaml},
+      {"export --gait bad.yaml --out o.csv", invalid_yaml},
+      {exporter + " --out .", "--out '.' is a directory, a file is expected"},
+      {exporter + " --out /", "--out '/' is a directory, a file is expected"},
+      {"export-model --format urdf --robot bad.yaml --out o.urdf", invalid_yaml},
+      {plot + " --out o.txt", "must end in .png or .svg"},
+      {"plot stick foreign --out o.png", "foreign: no summary.json"},
+      {plot + " --out " + quoted(sourcePath("tests/data/sample_run/summary.json")),
+       "must end in .png or .svg"},
+      {plot + " --out /", "must end in .png or .svg"},
+  };
+  const auto sample_run = snapshot(sourcePath("tests/data/sample_run"));
+  for (const auto& [args, message] : cases) {
+    const Sandbox box;
+    const auto before = snapshot(box.dir);
+    const CliRun r = box.run(args);
+    INFO(args << "\n" << r.err);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Contains(message));
+    CHECK(snapshot(box.dir) == before);  // nothing written, removed or left behind
+  }
+  CHECK(snapshot(sourcePath("tests/data/sample_run")) == sample_run);
+}
+
 TEST_CASE("output safety: planted links at final and staging names are not followed",
           "[reliability][cli]") {
   const Sandbox box;
@@ -228,30 +301,46 @@ TEST_CASE("output safety: a killed run leaves the old or the new result, never a
   // `old_run` then `new_run` write the same files with other content into OUT; `new_run` is
   // killed (SIGKILL) after each delay: OUT must then hold the complete old or the complete new
   // result (its complete reference run), whatever the moment.
+  // `out` names the result (a directory, or a file); its files compare without their wall
+  // times (the lines naming one, sweep.csv's last column), the one part of a result that
+  // differs between identical runs.
   const auto requireOldOrNew = [&](const std::string& old_run, const std::string& new_run,
-                                   const std::vector<std::string>& delays) {
+                                   const std::vector<std::string>& delays,
+                                   const std::string& out = "walk") {
+    const auto result = [&](const std::string& name) {
+      auto entries = snapshot(box.dir / name);
+      for (auto& [path, content] : entries) {
+        std::istringstream lines(content);
+        content.clear();
+        const bool sweep_csv = path.size() >= 9 && path.substr(path.size() - 9) == "sweep.csv";
+        for (std::string line; std::getline(lines, line);)
+          if (line.find("wall_time_s\"") == std::string::npos)
+            content += (sweep_csv ? line.substr(0, line.rfind(',')) : line) + "\n";
+      }
+      return entries;
+    };
     REQUIRE(box.run(new_run + " --out reference").exit_code == 0);
-    const auto reference = snapshot(box.dir / "reference");
-    REQUIRE(box.run(old_run + " --out walk").exit_code == 0);
-    const auto old = snapshot(box.dir / "walk");
+    const auto reference = result("reference");
+    REQUIRE(box.run(old_run + " --out " + out).exit_code == 0);
+    const auto old = result(out);
     REQUIRE(old != reference);
     int killed = 0;
     for (const std::string& delay : delays) {
       const CliRun run = box.run("--version >/dev/null; timeout -s KILL " + delay + " " +
-                                 quoted(GAITOPT_CLI) + " " + new_run + " --out walk");
+                                 quoted(GAITOPT_CLI) + " " + new_run + " --out " + out);
       INFO(new_run << ": killed after " << delay << " s, exit " << run.exit_code);
       killed += run.exit_code == 137;
-      const auto now = snapshot(box.dir / "walk");
+      const auto now = result(out);
       CHECK((now == old || now == reference));
-      if (now == reference) REQUIRE(box.run(old_run + " --out walk").exit_code == 0);
+      if (now == reference) REQUIRE(box.run(old_run + " --out " + out).exit_code == 0);
     }
     CHECK(killed > 0);  // at least one run was really killed mid-way
     // A killed run leaves its staging folder; the next run removes it once it is stale.
     for (const std::string& name : stagingEntries(box.dir)) backdate(box.dir / name);
-    REQUIRE(box.run(old_run + " --out walk").exit_code == 0);
+    REQUIRE(box.run(old_run + " --out " + out).exit_code == 0);
     CHECK(stagingEntries(box.dir).empty());
     fs::remove_all(box.dir / "reference");
-    fs::remove_all(box.dir / "walk");
+    fs::remove_all(box.dir / out);
   };
   // simulate: 4 files, about 0.5 s for 30 steps, written at the end.
   const std::string gait = quoted(kGait);
@@ -273,6 +362,25 @@ TEST_CASE("output safety: a killed run leaves the old or the new result, never a
   requireOldOrNew(stability + " --map-points 3", stability + " --map-points 5",
                   light ? std::vector<std::string>{"1", "3"}
                         : std::vector<std::string>{"0.3", "1", "2", "2.5", "3", "3.5"});
+  // evaluate: 2 files, about 0.5 s with a 5.5 MB trajectory.
+  requireOldOrNew("evaluate --gait " + gait + " --sample-rate 100",
+                  "evaluate --gait " + gait + " --sample-rate 10000",
+                  {"0.05", "0.15", "0.3", "0.45", "0.6", "1"});
+  // synth: one file, the truth its comment lines, about 0.5 s for 30 steps.
+  const std::string synth = "synth --robot " + robot + " --gait " + gait;
+  requireOldOrNew(synth + " --steps 3", synth + " --steps 30 --effect coulomb@knee_left=4",
+                  {"0.05", "0.15", "0.3", "0.45", "0.6", "1"}, "walk.csv");
+  // optimize: 3 files, about 1.5 s of CPU at 0.6 m/s; sweep: sweep.csv and one folder of 3
+  // files per speed, about 2 s for two speeds.
+  const std::string config = quoted(sourcePath("configs/default.yaml"));
+  requireOldOrNew("optimize --quiet --config " + config,
+                  "optimize --quiet --speed 0.6 --config " + config,
+                  light ? std::vector<std::string>{"1", "5"}
+                        : std::vector<std::string>{"0.3", "1", "2", "3"});
+  const std::string sweep = "sweep --quiet --config " + config + " --speeds ";
+  requireOldOrNew(sweep + "0.5:0.5:0.05", sweep + "0.5:0.55:0.05",
+                  light ? std::vector<std::string>{"1", "5"}
+                        : std::vector<std::string>{"0.5", "1.5", "3"});
   // impact-map: 2 files, about 3 s for 10^6 grid points.
   const std::string map = "impact-map --q=-0.367464,-3.018514,-3.135493,0.606892,-3.030679";
   requireOldOrNew(map + " --mu-range 0:1.5:10 --theta-range -180:0:10",
