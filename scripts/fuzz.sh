@@ -24,9 +24,9 @@ declare -A SEEDS=(
   [fuzz_gait_yaml]="configs/gait/*.yaml fuzz/seeds/aliases.yaml"
   [fuzz_config_yaml]="configs/*.yaml fuzz/seeds/aliases.yaml"
   [fuzz_sweep_csv]="fuzz/seeds/sweep.csv"
-  [fuzz_measured_csv]="fuzz/seeds/measured.csv"
+  [fuzz_measured_csv]="fuzz/seeds/measured*.csv"
   [fuzz_opensim_table]="fuzz/seeds/*.mot fuzz/seeds/*.sto"
-  [fuzz_trc_file]="fuzz/seeds/markers.trc"
+  [fuzz_trc_file]="fuzz/seeds/*.trc"
 )
 
 bash "$ROOT/scripts/build_san.sh"
