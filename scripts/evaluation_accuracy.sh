@@ -12,13 +12,9 @@
 set -euo pipefail
 
 PAGE=docs/formats/gait-file.md
-if [ "${1:-}" = --blocks ]; then
-  echo "$PAGE dry-friction"
-  exit 0
-fi
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-cd "$ROOT"
-GAITOPT="${GAITOPT:-build/gaitopt}"
+# shellcheck source=scripts/regenerator.sh
+. "$(dirname "${BASH_SOURCE[0]}")/regenerator.sh"
+regenerator_start "${1:-}" "$PAGE dry-friction"
 OUT=results/evaluation_accuracy
 GAIT=configs/gait/default_step.yaml
 NODES=(32 64 128)

@@ -13,14 +13,9 @@
 set -euo pipefail
 
 PAGE=docs/formats/controller-export.md
-if [ "${1:-}" = --blocks ]; then
-  echo "$PAGE"
-  exit 0
-fi
-
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-cd "$ROOT"
-GAITOPT="${GAITOPT:-build/gaitopt}"
+# shellcheck source=scripts/regenerator.sh
+. "$(dirname "${BASH_SOURCE[0]}")/regenerator.sh"
+regenerator_start "${1:-}" "$PAGE"
 GAIT="${1:-configs/gait/default_step.yaml}"
 OUT=results/export_figures
 mkdir -p "$OUT"

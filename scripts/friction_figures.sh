@@ -14,13 +14,9 @@
 set -euo pipefail
 
 PAGE=docs/commands/optimize.md
-if [ "${1:-}" = --blocks ]; then
-  printf '%s %s\n' "$PAGE" viscous "$PAGE" margin
-  exit 0
-fi
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-cd "$ROOT"
-GAITOPT="${GAITOPT:-build/gaitopt}"
+# shellcheck source=scripts/regenerator.sh
+. "$(dirname "${BASH_SOURCE[0]}")/regenerator.sh"
+regenerator_start "${1:-}" "$PAGE viscous" "$PAGE margin"
 OUT=results/friction_figures
 SPEEDS=(0.5 0.3 0.8)
 mkdir -p "$OUT"

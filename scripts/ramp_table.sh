@@ -12,13 +12,9 @@
 set -euo pipefail
 
 PAGE=docs/commands/export.md
-if [ "${1:-}" = --blocks ]; then
-  echo "$PAGE ramp"
-  exit 0
-fi
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-cd "$ROOT"
-GAITOPT="${GAITOPT:-build/gaitopt}"
+# shellcheck source=scripts/regenerator.sh
+. "$(dirname "${BASH_SOURCE[0]}")/regenerator.sh"
+regenerator_start "${1:-}" "$PAGE ramp"
 OUT=results/ramp_table
 GAITS=(default_step optimal_0.3 optimal_0.8 chesse_0.85 chevallereau_aoustin_0.75 default_impact)
 mkdir -p "$OUT"

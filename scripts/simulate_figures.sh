@@ -12,13 +12,9 @@
 set -euo pipefail
 
 PAGE=docs/commands/simulate.md
-if [ "${1:-}" = --blocks ]; then
-  echo "$PAGE cases"
-  exit 0
-fi
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-cd "$ROOT"
-GAITOPT="${GAITOPT:-build/gaitopt}"
+# shellcheck source=scripts/regenerator.sh
+. "$(dirname "${BASH_SOURCE[0]}")/regenerator.sh"
+regenerator_start "${1:-}" "$PAGE cases"
 OUT=results/simulate_figures
 IMPACT=configs/gait/chevallereau_aoustin_0.75_impact.yaml
 DEFAULT=configs/gait/default_step.yaml

@@ -13,13 +13,9 @@
 set -euo pipefail
 
 PAGE=docs/commands/sweep.md
-if [ "${1:-}" = --blocks ]; then
-  printf '%s %s\n' "$PAGE" table "$PAGE" jobs
-  exit 0
-fi
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-cd "$ROOT"
-GAITOPT="${GAITOPT:-build/gaitopt}"
+# shellcheck source=scripts/regenerator.sh
+. "$(dirname "${BASH_SOURCE[0]}")/regenerator.sh"
+regenerator_start "${1:-}" "$PAGE table" "$PAGE jobs"
 OUT=results/sweep_table
 SPEEDS=0.2:1.0:0.1
 mkdir -p "$OUT"

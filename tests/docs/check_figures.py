@@ -43,7 +43,7 @@ EXCLUDED = {"docs/commands/import-opensim.md", "docs/commands/diagnose.md"}
 PENDING = {
     "docs/commands/stability.md": 24,
     "docs/formats/optimizer-config.md": 20,
-    "docs/science/gait-evaluation.md": 8,
+    "docs/science/gait-evaluation.md": 6,
     "docs/science/impact-gaits.md": 31,
     "docs/science/richer-parameterisation.md": 15,
     "docs/science/table-3.1.md": 19,
