@@ -9,8 +9,9 @@
 #   scripts/evaluation_accuracy.sh            regenerate the blocks (seconds)
 #   scripts/evaluation_accuracy.sh --blocks   the blocks it writes (`PAGE KEY`)
 #
-# Outputs under results/evaluation_accuracy/. Environment: GAITOPT (default build/gaitopt),
-# GAITOPT_DOCS_ROOT (the tree whose pages are written, default the repository root).
+# Outputs under results/evaluation_accuracy/ (GAITOPT_RESULTS instead of results/). Environment:
+# GAITOPT (default build/gaitopt), GAITOPT_DOCS_ROOT (the tree whose pages are written,
+# default the repository root).
 set -euo pipefail
 
 PAGE=docs/formats/gait-file.md
@@ -18,7 +19,7 @@ PAGE=docs/formats/gait-file.md
 . "$(dirname "${BASH_SOURCE[0]}")/regenerator.sh"
 SCIENCE=docs/science/gait-evaluation.md
 regenerator_start "${1:-}" "$PAGE dry-friction" "$SCIENCE quadrature"
-OUT=results/evaluation_accuracy
+OUT="$RESULTS/evaluation_accuracy"
 GAIT=configs/gait/default_step.yaml
 NODES=(32 64 128)
 mkdir -p "$OUT"

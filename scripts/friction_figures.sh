@@ -9,15 +9,16 @@
 #   scripts/friction_figures.sh            regenerate the blocks (about a minute on 2 cores)
 #   scripts/friction_figures.sh --blocks   the blocks it writes (`PAGE KEY`)
 #
-# Outputs under results/friction_figures/. Environment: GAITOPT (default build/gaitopt),
-# GAITOPT_DOCS_ROOT (the tree whose pages are written, default the repository root).
+# Outputs under results/friction_figures/ (GAITOPT_RESULTS instead of results/). Environment:
+# GAITOPT (default build/gaitopt), GAITOPT_DOCS_ROOT (the tree whose pages are written,
+# default the repository root).
 set -euo pipefail
 
 PAGE=docs/commands/optimize.md
 # shellcheck source=scripts/regenerator.sh
 . "$(dirname "${BASH_SOURCE[0]}")/regenerator.sh"
 regenerator_start "${1:-}" "$PAGE viscous" "$PAGE margin"
-OUT=results/friction_figures
+OUT="$RESULTS/friction_figures"
 SPEEDS=(0.5 0.3 0.8)
 mkdir -p "$OUT"
 

@@ -7,15 +7,16 @@
 #   scripts/ramp_table.sh            regenerate the block (seconds)
 #   scripts/ramp_table.sh --blocks   the block it writes (`PAGE KEY`)
 #
-# Outputs under results/ramp_table/. Environment: GAITOPT (default build/gaitopt),
-# GAITOPT_DOCS_ROOT (the tree whose pages are written, default the repository root).
+# Outputs under results/ramp_table/ (GAITOPT_RESULTS instead of results/). Environment:
+# GAITOPT (default build/gaitopt), GAITOPT_DOCS_ROOT (the tree whose pages are written,
+# default the repository root).
 set -euo pipefail
 
 PAGE=docs/commands/export.md
 # shellcheck source=scripts/regenerator.sh
 . "$(dirname "${BASH_SOURCE[0]}")/regenerator.sh"
 regenerator_start "${1:-}" "$PAGE ramp"
-OUT=results/ramp_table
+OUT="$RESULTS/ramp_table"
 GAITS=(default_step optimal_0.3 optimal_0.8 chesse_0.85 chevallereau_aoustin_0.75 default_impact)
 mkdir -p "$OUT"
 for gait in "${GAITS[@]}"; do

@@ -4,7 +4,7 @@
 #   regenerator_start "${1:-}" "PAGE KEY"...
 # With --blocks as the first argument it prints the blocks (one `PAGE [KEY]` per line) and ends
 # the script; otherwise it moves to the repository root and sets GAITOPT (default
-# build/gaitopt).
+# build/gaitopt) and RESULTS, the folder of the runs' outputs (GAITOPT_RESULTS, default results).
 
 regenerator_start() {  # regenerator_start FIRST_ARGUMENT "PAGE [KEY]"...
   if [ "$1" = --blocks ]; then
@@ -13,4 +13,5 @@ regenerator_start() {  # regenerator_start FIRST_ARGUMENT "PAGE [KEY]"...
   fi
   cd "$(dirname "${BASH_SOURCE[0]}")/.."
   GAITOPT="${GAITOPT:-build/gaitopt}"
+  RESULTS="${GAITOPT_RESULTS:-results}"
 }

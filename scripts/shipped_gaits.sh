@@ -8,15 +8,16 @@
 #   scripts/shipped_gaits.sh            regenerate the block (seconds)
 #   scripts/shipped_gaits.sh --blocks   the block it writes (`PAGE KEY`)
 #
-# Outputs under results/shipped_gaits/. Environment: GAITOPT (default build/gaitopt),
-# GAITOPT_DOCS_ROOT (the tree whose pages are written, default the repository root).
+# Outputs under results/shipped_gaits/ (GAITOPT_RESULTS instead of results/). Environment:
+# GAITOPT (default build/gaitopt), GAITOPT_DOCS_ROOT (the tree whose pages are written,
+# default the repository root).
 set -euo pipefail
 
 PAGE=docs/formats/optimizer-config.md
 # shellcheck source=scripts/regenerator.sh
 . "$(dirname "${BASH_SOURCE[0]}")/regenerator.sh"
 regenerator_start "${1:-}" "$PAGE shipped"
-OUT=results/shipped_gaits
+OUT="$RESULTS/shipped_gaits"
 mkdir -p "$OUT"
 gaits=()
 for gait in configs/gait/*.yaml; do

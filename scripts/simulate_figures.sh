@@ -7,15 +7,16 @@
 #   scripts/simulate_figures.sh            regenerate the block (seconds)
 #   scripts/simulate_figures.sh --blocks   the block it writes (`PAGE KEY`)
 #
-# Outputs under results/simulate_figures/. Environment: GAITOPT (default build/gaitopt),
-# GAITOPT_DOCS_ROOT (the tree whose pages are written, default the repository root).
+# Outputs under results/simulate_figures/ (GAITOPT_RESULTS instead of results/). Environment:
+# GAITOPT (default build/gaitopt), GAITOPT_DOCS_ROOT (the tree whose pages are written,
+# default the repository root).
 set -euo pipefail
 
 PAGE=docs/commands/simulate.md
 # shellcheck source=scripts/regenerator.sh
 . "$(dirname "${BASH_SOURCE[0]}")/regenerator.sh"
 regenerator_start "${1:-}" "$PAGE cases"
-OUT=results/simulate_figures
+OUT="$RESULTS/simulate_figures"
 IMPACT=configs/gait/chevallereau_aoustin_0.75_impact.yaml
 DEFAULT=configs/gait/default_step.yaml
 # name | gait | options

@@ -8,15 +8,16 @@
 #   scripts/sweep_table.sh            regenerate the blocks (about 30 s on 2 cores)
 #   scripts/sweep_table.sh --blocks   the blocks it writes, one `PAGE KEY` per line
 #
-# Outputs of the runs under results/sweep_table/. Environment: GAITOPT (default build/gaitopt),
-# GAITOPT_DOCS_ROOT (the tree whose pages are written, default the repository root).
+# Outputs under results/sweep_table/ (GAITOPT_RESULTS instead of results/). Environment:
+# GAITOPT (default build/gaitopt), GAITOPT_DOCS_ROOT (the tree whose pages are written,
+# default the repository root).
 set -euo pipefail
 
 PAGE=docs/commands/sweep.md
 # shellcheck source=scripts/regenerator.sh
 . "$(dirname "${BASH_SOURCE[0]}")/regenerator.sh"
 regenerator_start "${1:-}" "$PAGE table" "$PAGE jobs"
-OUT=results/sweep_table
+OUT="$RESULTS/sweep_table"
 SPEEDS=0.2:1.0:0.1
 mkdir -p "$OUT"
 

@@ -138,8 +138,10 @@ done
 
 states="$(scontrol -o show job "$job")" || fail "scontrol show job exits $?"
 completed="$(grep -c 'JobState=COMPLETED .* ExitCode=0:0' <<<"$states" || true)"
-[ "$completed" = "$SHARDS" ] ||
-  fail "$completed of $SHARDS array tasks COMPLETED with exit code 0: $(grep -o 'JobState=[A-Z_]*\|ExitCode=[0-9:]*' <<<"$states" | tr '\n' ' ')"
+if [ "$completed" != "$SHARDS" ]; then
+  seen="$(grep -o 'JobState=[A-Z_]*\|ExitCode=[0-9:]*' <<<"$states" | tr '\n' ' ')"
+  fail "$completed of $SHARDS array tasks COMPLETED with exit code 0: $seen"
+fi
 
 shard_dirs=()
 for ((i = 0; i < SHARDS; ++i)); do shard_dirs+=("$tmp/submit/results/sweep_shard_$i"); done
@@ -149,11 +151,14 @@ for ((i = 0; i < SHARDS; ++i)); do shard_dirs+=("$tmp/submit/results/sweep_shard
 # --- the comparison: bytes, but for the wall times.
 without_wall_time() {  # sweep.csv without its wall_time_s column (found by name)
   awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "wall_time_s") w = i; if (!w) exit 1 }
-           { out = ""; sep = ""; for (i = 1; i <= NF; ++i) if (i != w) { out = out sep $i; sep = "," }
+           { out = ""; sep = ""
+             for (i = 1; i <= NF; ++i) if (i != w) { out = out sep $i; sep = "," }
              print out }' "$1"
 }
-without_wall_time "$tmp/submit/results/sweep_one/sweep.csv" >"$tmp/one.csv" || fail "one-process sweep.csv has no wall_time_s"
-without_wall_time "$tmp/merged/sweep.csv" >"$tmp/merged.csv" || fail "merged sweep.csv has no wall_time_s"
+without_wall_time "$tmp/submit/results/sweep_one/sweep.csv" >"$tmp/one.csv" ||
+  fail "one-process sweep.csv has no wall_time_s"
+without_wall_time "$tmp/merged/sweep.csv" >"$tmp/merged.csv" ||
+  fail "merged sweep.csv has no wall_time_s"
 rows="$(($(wc -l <"$tmp/one.csv") - 1))"
 [ "$rows" -ge 4 ] || fail "the one-process sweep has $rows rows"
 cmp "$tmp/one.csv" "$tmp/merged.csv" || fail "merged sweep.csv differs from the one-process one"
