@@ -40,7 +40,7 @@ import tempfile
 # Regenerators run by check 3 (seconds to a minute each on 2 cores; docs/tests.md).
 CHEAP = {"scripts/sweep_table.sh", "scripts/export_figures.sh", "scripts/evaluation_accuracy.sh",
          "scripts/friction_figures.sh", "scripts/ramp_table.sh", "scripts/simulate_figures.sh",
-         "scripts/shipped_gaits.sh"}
+         "scripts/shipped_gaits.sh", "scripts/impact_figures.sh"}
 # Pages rewritten elsewhere at the moment; not scanned until they are converted.
 EXCLUDED = {"docs/commands/import-opensim.md", "docs/commands/diagnose.md"}
 # Pages whose numbers are constants, not measurements: not scanned (page -> why).
@@ -50,7 +50,7 @@ CONSTANT_PAGES = {
 # Pages still quoting measured figures by hand, with how many: the count may only go down.
 PENDING = {
     "docs/science/gait-evaluation.md": 2,
-    "docs/science/impact-gaits.md": 31,
+    "docs/science/impact-gaits.md": 19,
     "docs/science/richer-parameterisation.md": 15,
     "docs/science/table-3.1.md": 19,
 }
