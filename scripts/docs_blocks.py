@@ -17,6 +17,9 @@ repository root), so that a check can regenerate them into a copy:
     python3 scripts/docs_blocks.py write scripts/NAME.sh PAGE [KEY] < CONTENT
     python3 scripts/docs_blocks.py list            # SCRIPT PAGE [KEY] of every block found
 
+or, from Python run at the repository root, `docs_blocks.write(...)`, and `number(x)` to
+write a figure as the pages do.
+
 The checks (tests/docs/check_figures.py) are described in docs/tests.md.
 """
 import os
@@ -109,6 +112,18 @@ def write(script, page, key, content):
     with open(path + ".tmp", "w", encoding="utf-8") as f:
         f.write("\n".join(lines))
     os.replace(path + ".tmp", path)
+
+
+SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def number(x, significant=3):
+    """x to that many significant digits as the docs write numbers: 2.9·10⁻⁵, −0.885."""
+    text = f"{x:.{significant}g}"
+    if "e" in text:
+        mantissa, exponent = text.split("e")
+        text = f"{mantissa}·10" + str(int(exponent)).translate(SUPERSCRIPT)
+    return text.replace("-", "−")
 
 
 def main(argv):

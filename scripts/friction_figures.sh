@@ -47,7 +47,10 @@ done
 for pid in "${pids[@]}"; do wait "$pid"; done
 
 /usr/bin/python3 - "$OUT" "$PAGE" "${SPEEDS[@]}" <<'PY'
-import json, os, subprocess, sys
+import json, os, sys
+
+sys.path.insert(0, "scripts")
+import docs_blocks  # noqa: E402
 
 out, page, speeds = sys.argv[1], sys.argv[2], sys.argv[3:]
 s = {(v, x): json.load(open(os.path.join(out, f"{v}_{x}", "summary.json")))
@@ -87,7 +90,6 @@ for x in speeds:
     table.append(f"| {x} m/s | {result(s[('viscous', x)])} | {result(s[('dry_0.8', x)])} "
                  f"| {result(s[('dry_0.6', x)], reference)} |")
 for key, text in (("viscous", block_viscous + "\n"), ("margin", "\n".join(table) + "\n")):
-    subprocess.run([sys.executable, "scripts/docs_blocks.py", "write", "scripts/friction_figures.sh",
-                    page, key], input=text, text=True, check=True)
+    docs_blocks.write("scripts/friction_figures.sh", page, key, text)
 print(f"friction_figures: blocks written to {page}")
 PY

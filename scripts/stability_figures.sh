@@ -45,20 +45,17 @@ for entry in "${RUNS[@]}"; do
 done
 
 /usr/bin/python3 - "$OUT" "$PAGE" <<'PY'
-import json, os, subprocess, sys
+import json, os, sys
+
+sys.path.insert(0, "scripts")
+import docs_blocks  # noqa: E402
 
 out, page = sys.argv[1:]
 runs = [line.rstrip("\n").split("|") for line in open(os.path.join(out, "runs.txt"))]
 s = {name: json.load(open(os.path.join(out, name, "stability.json"))) for name, _, _ in runs}
 
 
-def g(x):
-    text = f"{x:.3g}"
-    if "e" not in text:
-        return text.replace("-", "−")
-    mantissa, exponent = text.split("e")
-    power = str(int(exponent)).translate(str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹"))
-    return f"{mantissa}·10{power}".replace("-", "−")
+g = docs_blocks.number
 
 
 def interval(pair):
@@ -102,7 +99,6 @@ for name, gait, options in runs:
         f"| {margin(m['push_forward'])}; {margin(m['push_backward'])} | {margin(m['trunk_payload'])} "
         f"| {margin(m['slope']['up'])}; {margin(m['slope']['down'])} |")
 for key, lines in (("ds-zone", zone), ("analysis", rows)):
-    subprocess.run([sys.executable, "scripts/docs_blocks.py", "write", "scripts/stability_figures.sh",
-                    page, key], input="\n".join(lines) + "\n", text=True, check=True)
+    docs_blocks.write("scripts/stability_figures.sh", page, key, "\n".join(lines) + "\n")
 print(f"stability_figures: blocks written to {page}")
 PY

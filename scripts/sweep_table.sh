@@ -37,7 +37,10 @@ wait "$one"
 wait "$two"
 
 /usr/bin/python3 - "$OUT" "$SPEEDS" "$PAGE" <<'PY'
-import csv, os, re, subprocess, sys
+import csv, os, re, sys
+
+sys.path.insert(0, "scripts")
+import docs_blocks  # noqa: E402
 
 out, speeds, page = sys.argv[1:]
 rows = {j: list(csv.DictReader(open(os.path.join(out, f"jobs{j}", "sweep.csv")))) for j in (1, 2)}
@@ -86,7 +89,6 @@ jobs = [
     + f"{worst['C_Gamma']:.1e}, of C_E {worst['C_E']:.1e}, of W {worst['W']:.1e}."
 ]
 for key, lines in (("table", table), ("jobs", jobs)):
-    subprocess.run([sys.executable, "scripts/docs_blocks.py", "write", "scripts/sweep_table.sh",
-                    page, key], input="\n".join(lines) + "\n", text=True, check=True)
+    docs_blocks.write("scripts/sweep_table.sh", page, key, "\n".join(lines) + "\n")
 print(f"sweep_table: blocks written to {page}")
 PY
