@@ -19,7 +19,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 gaitopt="${GAITOPT:-$root/build/gaitopt}"
 walk="${MUJOCO_WALK:-$root/build/examples/mujoco_walk}"
-doc="$root/docs/walking_controller_mujoco.md"
+doc=docs/walking_controller_mujoco.md  # its generated block (scripts/docs_blocks.py)
 
 shipped_gaits=(
   configs/gait/optimal_0.3.yaml
@@ -61,6 +61,7 @@ while [ "$#" -gt 0 ]; do
     --jobs) jobs="${2:?}"; shift 2 ;;
     --out) out="${2:?}"; shift 2 ;;
     -h|--help) usage ;;
+    --blocks) echo "docs/walking_controller_mujoco.md"; exit 0 ;;  # its generated block
     -*) echo "mujoco_grid: unknown option $1" >&2; usage ;;
     *) gaits+=("$1"); full=0; shift ;;
   esac
@@ -135,7 +136,8 @@ xargs -r -P "$jobs" -L 1 bash -c 'eval "$case_args_def"; run_cell "$@"' _ <"$tmp
 
 publish=""
 [ "$full" = 1 ] && publish="$doc"
-/usr/bin/python3 - "$out" "$tmp" "$steps" "$publish" "${cases[@]}" <<'EOF'
+DOCS_BLOCKS="$root/scripts/docs_blocks.py" \
+  /usr/bin/python3 - "$out" "$tmp" "$steps" "$publish" "${cases[@]}" <<'EOF'
 import csv, datetime, os, subprocess, sys
 
 out, tmp, steps, doc, cases = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], sys.argv[5:]
@@ -212,13 +214,8 @@ if doc:
     if absent:
         lines += ["", "Not run (gait file absent): "
                   + ", ".join(f"`{g}.yaml`" for g in absent) + "."]
-    begin, end = "<!-- mujoco-grid: begin -->", "<!-- mujoco-grid: end -->"
-    text = open(doc).read()
-    i, j = text.index(begin) + len(begin), text.index(end)
-    text = text[:i] + "\n" + "\n".join(lines) + "\n" + text[j:]
-    with open(doc + ".tmp", "w") as f:
-        f.write(text)
-    os.replace(doc + ".tmp", doc)
+    subprocess.run([sys.executable, os.environ["DOCS_BLOCKS"], "write", "scripts/mujoco_grid.sh",
+                    doc], input="\n".join(lines) + "\n", text=True, check=True)
     print(f"mujoco_grid: table written to {doc}")
 sys.exit(0 if passed == total else 3)
 EOF

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Shared first half of scripts/run.sh and scripts/test.sh: install the Debian packages gaitopt
 # needs (only those missing) and build the project in Release mode into build/.
-# Run as `bash scripts/setup.sh` by run.sh and test.sh; works from any current directory.
+# Run as `bash scripts/setup.sh` by run.sh, as `bash scripts/setup.sh --test` by test.sh (the
+# test-only packages too); works from any current directory.
 set -euo pipefail
 
 GAITOPT_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -13,6 +14,13 @@ GAITOPT_PACKAGES=(
   git python3 python3-numpy python3-matplotlib python3-pil pybind11-dev python3-pybind11 python3-dev
   clang libclang-rt-14-dev  # libFuzzer harnesses (scripts/fuzz.sh, CI smoke run)
 )
+# Test-only: the one-node Slurm cluster of the slurm_sweep test (tests/slurm/).
+GAITOPT_TEST_PACKAGES=(slurm-wlm munge)
+case "${1:-}" in
+  --test) GAITOPT_PACKAGES+=("${GAITOPT_TEST_PACKAGES[@]}") ;;
+  "") ;;
+  *) echo "setup: error: unknown argument '$1' (expected --test or nothing)" >&2; exit 2 ;;
+esac
 
 gaitopt_install_packages() {
   local missing=() pkg status

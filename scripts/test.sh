@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# What CI runs (.ci/run): install what is missing, build, and run every test; then the same
+# What CI runs (.ci/run): install what is missing (the test-only packages too), build, check
+# that the Slurm cluster test is registered, and run every test; then the same
 # suite under AddressSanitizer + UndefinedBehaviorSanitizer in build-san/ (clang, -O2, slow
 # optimisation tests in their light form, GAITOPT_TEST_LIGHT=1), and a libFuzzer smoke run of
 # every reader from that same build directory (scripts/fuzz.sh --smoke, FUZZ_SECONDS per
@@ -20,7 +21,14 @@ part() {  # part NAME COMMAND...: runs and times one part
   echo "test.sh: $name took $((end - start)) s"
 }
 
-part "install + Release build" bash scripts/setup.sh
+part "install + Release build" bash scripts/setup.sh --test
+# CI has munge and slurm-wlm (setup.sh --test installs them): the cluster test must be there.
+listed="$(ctest --test-dir build -N -R '^slurm_sweep$')"
+if ! grep -q '^Total Tests: 1$' <<<"$listed"; then
+  echo "test.sh: error: the ctest slurm_sweep is not registered in build/ (munged, slurmctld," \
+    "slurmd or the Slurm clients not found at configure time)" >&2
+  exit 1
+fi
 part "Release tests" ctest --test-dir build --output-on-failure -j"$jobs"
 
 if [ "${SANITIZE:-1}" = 1 ]; then
