@@ -136,8 +136,7 @@ TEST_CASE("output safety: bad output locations of every command", "[reliability]
       {synth + " --out " + robot, "names the input --robot"},
       {synth + " --out .", "is a directory, a file is expected"},
       {opensim + "--out " + quoted(opensimIk()), "names the input --ik"},
-      {opensim + "--out o.csv --report o.csv",
-       "--report 'o.csv' is the same as, or inside, the output --out of this run"},
+      {opensim + "--result " + quoted(opensimIk()), "names the input --ik"},
       {opensim + "--out foreign/", "is a directory, a file is expected"},
       {plot + " --out /x/y/z.png", "its directory '/x/y' does not exist"},
   };
@@ -229,26 +228,27 @@ TEST_CASE("output safety: a killed run leaves the old or the new result, never a
   // killed (SIGKILL) after each delay: OUT must then hold the complete old or the complete new
   // result (its complete reference run), whatever the moment.
   const auto requireOldOrNew = [&](const std::string& old_run, const std::string& new_run,
-                                   const std::vector<std::string>& delays) {
-    REQUIRE(box.run(new_run + " --out reference").exit_code == 0);
+                                   const std::vector<std::string>& delays,
+                                   const std::string& out = "--out") {
+    REQUIRE(box.run(new_run + " " + out + " reference").exit_code == 0);
     const auto reference = snapshot(box.dir / "reference");
-    REQUIRE(box.run(old_run + " --out walk").exit_code == 0);
+    REQUIRE(box.run(old_run + " " + out + " walk").exit_code == 0);
     const auto old = snapshot(box.dir / "walk");
     REQUIRE(old != reference);
     int killed = 0;
     for (const std::string& delay : delays) {
       const CliRun run = box.run("--version >/dev/null; timeout -s KILL " + delay + " " +
-                                 quoted(GAITOPT_CLI) + " " + new_run + " --out walk");
+                                 quoted(GAITOPT_CLI) + " " + new_run + " " + out + " walk");
       INFO(new_run << ": killed after " << delay << " s, exit " << run.exit_code);
       killed += run.exit_code == 137;
       const auto now = snapshot(box.dir / "walk");
       CHECK((now == old || now == reference));
-      if (now == reference) REQUIRE(box.run(old_run + " --out walk").exit_code == 0);
+      if (now == reference) REQUIRE(box.run(old_run + " " + out + " walk").exit_code == 0);
     }
     CHECK(killed > 0);  // at least one run was really killed mid-way
     // A killed run leaves its staging folder; the next run removes it once it is stale.
     for (const std::string& name : stagingEntries(box.dir)) backdate(box.dir / name);
-    REQUIRE(box.run(old_run + " --out walk").exit_code == 0);
+    REQUIRE(box.run(old_run + " " + out + " walk").exit_code == 0);
     CHECK(stagingEntries(box.dir).empty());
     fs::remove_all(box.dir / "reference");
     fs::remove_all(box.dir / "walk");
@@ -279,4 +279,13 @@ TEST_CASE("output safety: a killed run leaves the old or the new result, never a
                   map + " --mu-range 0:1.5:1000 --theta-range -180:0:1000",
                   light ? std::vector<std::string>{"1", "3"}
                         : std::vector<std::string>{"0.2", "1", "2", "2.5", "3", "3.5"});
+  // import-opensim --result: the CSV and the report, one folder published by one rename; about
+  // 0.3 s for the shipped trial with its analysis.
+  const std::string trial = "import-opensim --ik " + quoted(opensimIk()) + " --grf " +
+                            quoted(opensimGrf()) + " --trc " + quoted(opensimTrc()) + " --id " +
+                            quoted(opensimId());
+  requireOldOrNew(trial + " --time-window 0:1.5", trial,
+                  light ? std::vector<std::string>{"0.2", "1"}
+                        : std::vector<std::string>{"0.05", "0.1", "0.15", "0.2", "0.25", "0.3", "0.4"},
+                  "--result");
 }
