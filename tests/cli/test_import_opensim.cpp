@@ -72,7 +72,8 @@ TEST_CASE("import-opensim CLI: the second trial, its conventions and the sanity 
   for (std::size_t i = 7; i < id.size(); ++i) {
     std::vector<std::string> f = gaitopt::splitTabFields(id[i], "", 0);
     std::string row = f[0];
-    for (std::size_t c = 1; c < f.size(); ++c) row += "\t" + (c == 5 ? "-" + f[c] : f[c]);
+    for (std::size_t c = 1; c < f.size(); ++c)
+      row += "\t" + (c != 5 ? f[c] : f[c][0] == '-' ? f[c].substr(1) : "-" + f[c]);
     id[i] = row;
   }
   const std::string flipped = writeDamaged(dir, id, {}, ".sto");

@@ -76,7 +76,7 @@ TEST_CASE("second trial: old-style headers and headers without inDegrees", "[ope
   CHECK_FALSE(t.units_declared);
   const std::string truncated = writeDamaged(dir, grf, {{3, "datarows 4779"}, {5, "x"}}, ".mot");
   requireRowError([](const std::string& p) { return readOpenSimTable(p); }, truncated, 4785,
-                  "its header says datarows=4779");
+                  "the file has 4778 data rows but its header says datarows=4779");
   // An IK table must say its angle unit.
   const std::vector<std::string> ik = fileLines(rajagopalIk());
   const std::string no_flag = writeDamaged(dir, ik, {{2, "x"}}, ".sto");

@@ -90,7 +90,7 @@ TEST_CASE("measured data: optional centres of pressure cop1x, cop2x", "[ident][i
   torque_only[0] = "t,alpha,delta1,delta2,delta3,delta4,phase,stance,step,gamma1,gamma2,gamma3,gamma4,cop1x,cop2x";
   requireBad(torque_only, "column 'cop1x': centres of pressure need the reaction columns");
   rows[12] = rows[12].substr(0, rows[12].rfind(',')) + ",nan";
-  requireBad(rows, "row 11, column 'cop2x': not a finite number");
+  requireBad(rows, "row 12, column 'cop2x': not a finite number");
 }
 
 TEST_CASE("measured data: bad data is reported at its row and column", "[ident][io]") {
