@@ -136,7 +136,7 @@ TEST_CASE("output safety: bad output locations of every command", "[reliability]
       {synth + " --out " + robot, "names the input --robot"},
       {synth + " --out .", "is a directory, a file is expected"},
       {opensim + "--out " + quoted(opensimIk()), "names the input --ik"},
-      {opensim + "--result " + quoted(opensimIk()), "names the input --ik"},
+      {opensim + "--result " + quoted(opensimIk()), "exists and is not a directory"},
       {opensim + "--out foreign/", "is a directory, a file is expected"},
       {plot + " --out /x/y/z.png", "its directory '/x/y' does not exist"},
   };
@@ -283,7 +283,8 @@ TEST_CASE("output safety: a killed run leaves the old or the new result, never a
   // 0.3 s for the shipped trial with its analysis.
   const std::string trial = "import-opensim --ik " + quoted(opensimIk()) + " --grf " +
                             quoted(opensimGrf()) + " --trc " + quoted(opensimTrc()) + " --id " +
-                            quoted(opensimId());
+                            quoted(opensimId()) + " --robot " +
+                            quoted(sourcePath("configs/robot/human_subject01.yaml"));
   requireOldOrNew(trial + " --time-window 0:1.5", trial,
                   light ? std::vector<std::string>{"0.2", "1"}
                         : std::vector<std::string>{"0.05", "0.1", "0.15", "0.2", "0.25", "0.3", "0.4"},

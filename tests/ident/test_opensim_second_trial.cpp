@@ -172,6 +172,12 @@ TEST_CASE("second trial: geometry from the robot file, time window, plate span",
   CHECK_THROWS_WITH(importOpenSimTrial(files(), loadRobot(plain)),
                     Contains(plain) && Contains("pelvis_frame") && Contains("missing"));
 
+  ScratchDir robots("opensim_pelvis_frame");
+  const std::string heavy = robots.fresh("robot") + ".yaml";
+  std::ofstream(heavy) << replacedOnce(readFile(rajagopalRobot()), "torso_mass: 38.776", "torso_mass: 48.776");
+  requireConfigError([](const std::string& p) { return loadRobot(p); }, heavy, "pelvis_frame.torso_mass", 37,
+                     "pelvis_mass + torso_mass = 62.114 kg must be the trunk mass m3 = 52.114 kg");
+
   OpenSimImportOptions window;
   window.time_window = std::make_pair(0.9, 1.5);
   const ImportedTrial w = importOpenSimTrial(files(), rajagopal(), window);
