@@ -1,6 +1,7 @@
 #pragma once
-// Paths of the shipped OpenSim walking trial (data/opensim-subject01-walk/) and helpers to
-// write damaged copies of its files.
+// Paths of the shipped OpenSim walking trials (data/opensim-subject01-walk/, a treadmill trial
+// of the gait10dof18musc pipeline, and data/opensim-rajagopal-walk/, an overground trial of
+// another person with a Rajagopal-family model) and helpers to write damaged copies of files.
 #include <string>
 #include <vector>
 
@@ -15,6 +16,18 @@ inline std::string opensimIk() { return opensimFile("subject01_walk_IK.mot"); }
 inline std::string opensimGrf() { return opensimFile("subject01_walk_grf.mot"); }
 inline std::string opensimId() { return opensimFile("subject01_walk_ID.sto"); }
 inline std::string opensimTrc() { return opensimFile("subject01_walk.trc"); }
+
+inline std::string rajagopalFile(const std::string& name) {
+  return std::string(GAITOPT_SOURCE_DIR) + "/data/opensim-rajagopal-walk/" + name;
+}
+inline std::string rajagopalIk() { return rajagopalFile("coordinates.sto"); }
+inline std::string rajagopalGrf() { return rajagopalFile("grf_walk.mot"); }
+inline std::string rajagopalId() { return rajagopalFile("id_walk.sto"); }
+inline std::string rajagopalTrc() { return rajagopalFile("markers_walk.trc"); }
+inline std::string rajagopalModel() { return rajagopalFile("subject_walk_scaled.osim"); }
+inline std::string rajagopalRobot() {
+  return std::string(GAITOPT_SOURCE_DIR) + "/configs/robot/human_rajagopal_walk.yaml";
+}
 
 inline std::vector<std::string> fileLines(const std::string& path) {
   std::vector<std::string> lines;

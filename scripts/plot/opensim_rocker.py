@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Rocker-foot figure of `gaitopt import-opensim --report REPORT.json`.
+"""Rocker-foot figure of the report.json of `gaitopt import-opensim --result DIR`.
 
 Usage: scripts/plot/opensim_rocker.py REPORT.json [OUT.png]   (default: REPORT.png)
 
@@ -30,7 +30,7 @@ def main():
     report_path = argv[1]
     if os.path.isdir(report_path):
         fail(KIND, f"{report_path}: a directory, not an import-opensim report; 'opensim_rocker' "
-                   "needs the JSON file written by gaitopt import-opensim --report")
+                   "needs the report.json written by gaitopt import-opensim --result")
     out = argv[2] if len(argv) == 3 else report_path.rsplit(".", 1)[0] + ".png"
     if os.path.splitext(out)[1].lower() not in (".png", ".svg"):
         fail(KIND, f"--out {out}: the file name must end in .png or .svg")
@@ -41,7 +41,7 @@ def main():
     except (OSError, ValueError) as e:
         fail(KIND, f"cannot read {report_path}: {e}")
     except (KeyError, TypeError):
-        fail(KIND, f"{report_path}: no 'rocker_foot' member: not the --report JSON of "
+        fail(KIND, f"{report_path}: no 'rocker_foot' member: not the report.json of "
                    "gaitopt import-opensim")
     fig, (ax_a, ax_t) = figure(1, 2)
     colours = {"right": "tab:red", "left": "tab:blue"}

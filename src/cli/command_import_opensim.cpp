@@ -1,60 +1,42 @@
 // `gaitopt import-opensim`: OpenSim IK + GRF (+ markers) → measured-data CSV at the GRF rate,
-// optionally with the point-foot analysis of the trial as JSON.
+// or a result folder with that CSV and the point-foot analysis of the trial as JSON.
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/opensim_analysis_file.hpp"
 #include "gaitopt/io/opensim_table.hpp"
 #include "gaitopt/io/opensim_trial_file.hpp"
 #include "gaitopt/io/robot_file.hpp"
+#include "import_opensim_summary.hpp"
 
 namespace gaitopt::cli {
 namespace {
 
 struct ImportArgs {
   OpenSimImportFiles files;
-  std::string id, out, report;
+  std::string id, out, result, window;
   std::string robot = "configs/robot/human_subject01.yaml";
   std::optional<double> belt_speed;
   double cutoff_hz = 6.0;
   std::string trunk = "markers";
 };
 
-void printSummary(const ImportedTrial& trial) {
-  std::cout << "belt speed " << shortNumber(trial.belt_speed, "%.4f") << " m/s ("
-            << trial.belt_source << "), trunk line from " << trial.trunk_source << "\n";
-  if (trial.belt_source == "IK ankle") {
-    std::cout << "  note: the IK ankle creeps forward in stance (about 0.1 m/s on the shipped trial);"
-                 " give --trc or --belt-speed for a better estimate\n";
-  }
-  for (const GaitEvent& e : trial.events) {
-    std::cout << "  " << shortNumber(e.time, "%.4f") << " s  " << sideName(e.side) << ' '
-              << (e.heel_strike ? "heel strike" : "toe off") << "\n";
-  }
-  std::cout << trial.t.size() << " samples, " << trial.step.back() + 1 << " steps\n";
-}
-
-void printAnalysis(const OpenSimAnalysis& a) {
-  for (const JointComparison& j : a.joints) {
-    std::cout << j.joint << ": RMS difference to OpenSim " << shortNumber(j.rms, "%.2f")
-              << " N m (reference RMS " << shortNumber(j.reference_rms, "%.2f")
-              << "), correlation " << shortNumber(j.correlation, "%.3f") << "\n";
-  }
-  std::cout << "single-support alpha-row residual RMS " << shortNumber(a.alpha_residual_rms, "%.2f")
-            << " N m, measured CoP moment RMS " << shortNumber(a.cop_moment_rms, "%.2f")
-            << " N m, correlation " << shortNumber(a.alpha_cop_correlation, "%.3f")
-            << "; left unexplained with the measured CoP " << shortNumber(a.alpha_minus_cop_rms, "%.2f")
-            << " N m, with a rocker foot " << shortNumber(a.alpha_minus_rocker_rms, "%.2f") << " N m\n";
-  std::cout << "rocker radius " << shortNumber(a.rocker.radius_all, "%.3f") << " m = "
-            << shortNumber(a.rocker.radius_all / a.rocker.leg_length, "%.3f")
-            << " x leg length (literature ~0.3); held-out CoP RMS point foot "
-            << shortNumber(a.rocker.holdout_rms_point, "%.4f") << " m, rocker "
-            << shortNumber(a.rocker.holdout_rms_rocker, "%.4f") << " m\n";
+// "A:B" seconds, A < B.
+std::pair<double, double> parseWindow(const std::string& text) {
+  const auto colon = text.find(':');
+  std::optional<double> a, b;
+  if (colon != std::string::npos) a = parseDecimal(text.substr(0, colon)), b = parseDecimal(text.substr(colon + 1));
+  if (!a || !b || !(*a < *b))
+    throw CLI::ValidationError("--time-window", "expected START:END in seconds with START < END, got '" +
+                                                    printable(text) + "'");
+  return {*a, *b};
 }
 
 }  // namespace
@@ -68,7 +50,13 @@ void registerImportOpenSimCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--ik", args->files.ik, "OpenSim IK coordinates (.mot)")->required();
   cmd->add_option("--grf", args->files.grf, "Force-plate reactions and CoP (.mot)")->required();
   cmd->add_option("--trc", args->files.trc, "Markers (.trc): trunk line and belt speed");
-  cmd->add_option("--id", args->id, "OpenSim inverse dynamics (.sto): torques compared in --report");
+  cmd->add_option("--id", args->id,
+                  "OpenSim inverse dynamics (.sto): hip and knee moments checked against ours");
+  cmd->add_option("--model", args->files.model,
+                  "The OpenSim model (.osim) of the IK: its name and knee-flexion sign");
+  cmd->add_option("--conventions", args->files.conventions,
+                  "YAML mapping: plates, knee_flexion, coordinates, markers (default: detected)");
+  cmd->add_option("--time-window", args->window, "Import only START:END [s]");
   cmd->add_option("--belt-speed", args->belt_speed,
                   "Treadmill belt speed [m/s] (default: estimated from the stance feet)")
       ->check(numberWithin(0.0, 10.0, true, "m/s"));
@@ -83,34 +71,39 @@ void registerImportOpenSimCommand(CLI::App& app, int& exit_code) {
                   "the IK model's pelvis + torso CoM)")
       ->capture_default_str()
       ->check(CLI::IsMember({"markers", "model"}));
-  cmd->add_option("--out", args->out, "Measured-data CSV to write")->required();
-  cmd->add_option("--report", args->report,
-                  "Also write the point-foot analysis (inverse dynamics vs --id, alpha-row "
-                  "residual, rocker-foot radius) as JSON");
+  CLI::Option* out = cmd->add_option("--out", args->out, "Measured-data CSV to write");
+  cmd->add_option("--result", args->result,
+                  "Result folder: data.csv and report.json (the point-foot analysis: torques "
+                  "vs --id, force balance, alpha-row residual, rocker-foot radius)")
+      ->excludes(out);
   cmd->callback([args, &exit_code]() {
+    if (args->out.empty() == args->result.empty())
+      throw CLI::ValidationError("--out, --result", "give one: --out DATA.csv or --result DIR");
     const RobotParams robot = loadRobot(args->robot);
+    OpenSimImportOptions options;
+    if (!args->window.empty()) options.time_window = parseWindow(args->window);
     OutputTransaction output({{"--ik", args->files.ik}, {"--grf", args->files.grf},
                               {"--trc", args->files.trc}, {"--id", args->id},
-                              {"--robot", args->robot}});
-    const std::string csv = output.file("--out", args->out);
-    const std::string report = args->report.empty() ? "" : output.file("--report", args->report);
-    OpenSimImportOptions options;
+                              {"--robot", args->robot}, {"--model", args->files.model},
+                              {"--conventions", args->files.conventions}});
+    // One result, one rename: the CSV alone, or the folder holding the CSV and the report.
+    const std::string dir = args->result.empty()
+                                ? ""
+                                : output.directory("--result", args->result,
+                                                   ourFiles({"data.csv", "report.json"}));
+    const std::string csv = dir.empty() ? output.file("--out", args->out) : dir + "/data.csv";
     options.belt_speed = args->belt_speed;
     options.cutoff_hz = args->cutoff_hz;
     options.trunk_from_markers = args->trunk == "markers";
     const ImportedTrial trial = importOpenSimTrial(args->files, robot, options);
     std::optional<OpenSimTable> id;
     if (!args->id.empty()) id = readOpenSimTable(args->id);
-    std::optional<OpenSimAnalysis> analysis;
-    if (!args->report.empty())
-      analysis = withDataErrorsAsConfigErrors(
-          [&] { return analyseImportedTrial(trial, buildModel(robot), id ? &*id : nullptr); });
+    const OpenSimAnalysis analysis = withDataErrorsAsConfigErrors(
+        [&] { return analyseImportedTrial(trial, buildModel(robot), id ? &*id : nullptr); });
     printSummary(trial);
+    printAnalysisAndCheck(trial, analysis, args->id);
     writeNewFile(csv, importedTrialCsv(trial));
-    if (analysis) {
-      printAnalysis(*analysis);
-      writeNewFile(report, opensimAnalysisJson(*analysis));
-    }
+    if (!dir.empty()) writeNewFile(dir + "/report.json", opensimAnalysisJson(analysis, trial));
     output.commit();
     exit_code = 0;
   });

@@ -120,7 +120,8 @@ std::vector<JointComparison> compareWithReference(const ImportedTrial& trial,
                                                   const Eigen::MatrixX4d& torque,
                                                   const OpenSimTable& id, double margin) {
   // OpenSim's coordinates grow opposite to δ (δ1 = −knee − π, δ2 = hip − π, …, (1.19)), so
-  // each OpenSim moment is −Γ of the joint's motor.
+  // each OpenSim moment is −Γ of the joint's motor; a knee_angle positive in flexion grows
+  // with δ1, and its moment is +Γ.
   const char* names[4] = {"hip_right", "knee_right", "hip_left", "knee_left"};
   const char* columns[4] = {"hip_flexion_r_moment", "knee_angle_r_moment", "hip_flexion_l_moment",
                             "knee_angle_l_moment"};
@@ -137,7 +138,8 @@ std::vector<JointComparison> compareWithReference(const ImportedTrial& trial,
       if (std::abs(trial.t(kk) - tr) > 1e-3 || !inner(trial, kk, margin)) continue;
       const bool is_leg1 = trial.leg1[kk] == side;
       const int motor = knee ? (is_leg1 ? 0 : 3) : (is_leg1 ? 1 : 2);
-      ours.push_back(-torque(kk, motor));
+      const bool flexion_positive = knee && trial.conventions.knee == KneeFlexion::Positive;
+      ours.push_back((flexion_positive ? 1.0 : -1.0) * torque(kk, motor));
       theirs.push_back(ref(r));
       diff.push_back(ours.back() - theirs.back());
     }

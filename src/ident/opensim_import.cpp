@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <utility>
 
 #include "gaitopt/ident/data_error.hpp"
@@ -24,28 +25,36 @@ Eigen::Vector2d rotated(double angle, const Eigen::Vector2d& v) {
 // Angle of `v`, counter-clockwise from the upward vertical.
 double angleFromUp(const Eigen::Vector2d& v) { return std::atan2(-v.x(), v.y()); }
 
-// Segment angles of the planar model (README of the data: thigh = pelvis_tilt + hip_flexion,
-// shank = thigh + knee_angle, all counter-clockwise seen from the right), the hip joint centre
-// and the trunk line through the model's lumped pelvis + torso CoM, at the IK times.
-Eigen::MatrixXd ikChannels(const OpenSimTable& ik, const OpenSimSubjectGeometry& g) {
+Eigen::Vector2d point(const std::array<double, 2>& p) { return {p[0], p[1]}; }
+
+// Segment angles of the planar model (thigh = pelvis_tilt + hip_flexion, shank = thigh ±
+// knee_angle with the knee's flexion sign, all counter-clockwise seen from the right), the hip
+// joint centre and the trunk line through the lumped pelvis + torso CoM, at the IK times; the
+// geometry is the robot file's pelvis_frame.
+Eigen::MatrixXd ikChannels(const OpenSimTable& ik, const OpenSimConventions& conv,
+                           const PelvisFrame& g) {
   const double unit = ik.in_degrees ? kPi / 180.0 : 1.0;
-  const Eigen::VectorXd tilt = unit * ik.column("pelvis_tilt");
-  const Eigen::VectorXd lumbar = unit * ik.column("lumbar_extension");
-  const Eigen::VectorXd tx = ik.column("pelvis_tx"), ty = ik.column("pelvis_ty");
+  // The shank turns backwards (clockwise seen from the right) as the knee flexes.
+  const double knee = conv.knee == KneeFlexion::Negative ? unit : -unit;
+  const auto col = [&](const char* name) { return ik.column(conv.column(name)); };
+  const Eigen::VectorXd tilt = unit * col("pelvis_tilt");
+  const Eigen::VectorXd lumbar = unit * col("lumbar_extension");
+  const Eigen::VectorXd tx = col("pelvis_tx"), ty = col("pelvis_ty");
   Eigen::MatrixXd c(ik.rows(), kChannels);
-  c.col(kThighR) = tilt + unit * ik.column("hip_flexion_r");
-  c.col(kShankR) = c.col(kThighR) + unit * ik.column("knee_angle_r");
-  c.col(kThighL) = tilt + unit * ik.column("hip_flexion_l");
-  c.col(kShankL) = c.col(kThighL) + unit * ik.column("knee_angle_l");
+  c.col(kThighR) = tilt + unit * col("hip_flexion_r");
+  c.col(kShankR) = c.col(kThighR) + knee * col("knee_angle_r");
+  c.col(kThighL) = tilt + unit * col("hip_flexion_l");
+  c.col(kShankL) = c.col(kThighL) + knee * col("knee_angle_l");
   const double trunk_mass = g.pelvis_mass + g.torso_mass;
+  const Eigen::Vector2d hip_in_pelvis = point(g.hip);
   for (Eigen::Index k = 0; k < ik.rows(); ++k) {
-    const Eigen::Vector2d hip = Eigen::Vector2d(tx(k), ty(k)) + rotated(tilt(k), g.hip_in_pelvis);
+    const Eigen::Vector2d hip = Eigen::Vector2d(tx(k), ty(k)) + rotated(tilt(k), hip_in_pelvis);
     c(k, kHipX) = hip.x();
     c(k, kHipZ) = hip.y();
     const Eigen::Vector2d com =
-        (g.pelvis_mass * rotated(tilt(k), g.pelvis_com - g.hip_in_pelvis) +
-         g.torso_mass * (rotated(tilt(k), g.back_in_pelvis - g.hip_in_pelvis) +
-                         rotated(tilt(k) + lumbar(k), g.torso_com))) /
+        (g.pelvis_mass * rotated(tilt(k), point(g.pelvis_com) - hip_in_pelvis) +
+         g.torso_mass * (rotated(tilt(k), point(g.back) - hip_in_pelvis) +
+                         rotated(tilt(k) + lumbar(k), point(g.torso_com)))) /
         trunk_mass;
     c(k, kTrunkModel) = angleFromUp(com);
   }
@@ -70,24 +79,59 @@ Eigen::MatrixX2d markerMean(const TrcData& trc, const std::vector<std::string>& 
 
 // Trunk line pelvis centroid → shoulder centroid (data README: within 3° of vertical, whereas
 // the model's torso frame leans 13° forward), at the marker times.
-Eigen::VectorXd markerTrunkAngle(const TrcData& trc, const OpenSimImportOptions& o) {
+Eigen::VectorXd markerTrunkAngle(const TrcData& trc, const OpenSimConventions& o) {
   const Eigen::MatrixX2d line = markerMean(trc, o.shoulder_markers) - markerMean(trc, o.pelvis_markers);
   Eigen::VectorXd psi(line.rows());
   for (Eigen::Index k = 0; k < line.rows(); ++k) psi(k) = angleFromUp(line.row(k).transpose());
   return psi;
 }
 
-// Output times: the force-plate samples inside the IK record (no extrapolation).
-std::vector<Eigen::Index> samplesInside(const OpenSimTable& grf, const OpenSimTable& ik) {
-  const double lo = ik.values(0, 0) - 1e-6, hi = ik.values(ik.rows() - 1, 0) + 1e-6;
+// Output times: the force-plate samples inside the IK record and the time window (no
+// extrapolation).
+std::vector<Eigen::Index> samplesInside(const OpenSimTable& grf, const OpenSimTable& ik,
+                                        const std::optional<std::pair<double, double>>& window) {
+  double lo = ik.values(0, 0) - 1e-6, hi = ik.values(ik.rows() - 1, 0) + 1e-6;
+  if (window) lo = std::max(lo, window->first - 1e-9), hi = std::min(hi, window->second + 1e-9);
   std::vector<Eigen::Index> rows;
   for (Eigen::Index k = 0; k < grf.rows(); ++k)
     if (grf.values(k, 0) >= lo && grf.values(k, 0) <= hi) rows.push_back(k);
   if (rows.size() < 3) {
     throw DataError(grf.file, "time", grf.first_data_line,
-                      "fewer than 3 force-plate samples inside the IK time range of " + ik.file);
+                    "fewer than 3 force-plate samples inside the IK time range of " + ik.file +
+                        (window ? " and the time window" : ""));
   }
   return rows;
+}
+
+std::string seconds(double t) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", t);
+  return buf;
+}
+
+// The longest run of samples in which a plate sees a foot: an overground trial's plates lose
+// the feet before and after the walkway's plates. Samples outside it are dropped with a note.
+std::vector<Eigen::Index> plateSpan(const OpenSimTable& grf, const std::vector<Eigen::Index>& rows,
+                                    const OpenSimConventions& c, double threshold,
+                                    std::vector<std::string>& notes) {
+  const Eigen::VectorXd right = grf.column(c.right_plate + "vy"), left = grf.column(c.left_plate + "vy");
+  std::size_t best = 0, best_length = 0;
+  for (std::size_t k = 0; k < rows.size();) {
+    std::size_t end = k;
+    while (end < rows.size() && (right(rows[end]) > threshold || left(rows[end]) > threshold)) ++end;
+    if (end - k > best_length) best = k, best_length = end - k;
+    k = std::max(end, k + 1);
+  }
+  if (best_length < 3)
+    throw DataError(grf.file, "", grf.first_data_line + int(rows.front()),
+                    "no foot on a plate (vertical forces <= threshold) in the time window: "
+                    "walking needs a foot on the ground");
+  if (best_length == rows.size()) return rows;
+  const double t0 = grf.values(rows[best], 0), t1 = grf.values(rows[best + best_length - 1], 0);
+  notes.push_back("kept t = " + seconds(t0) + " .. " + seconds(t1) + " s, where the plates see a foot; " +
+                  std::to_string(rows.size() - best_length) + " samples outside (no foot on a plate "
+                  "or another span) dropped with their steps");
+  return {rows.begin() + long(best), rows.begin() + long(best + best_length)};
 }
 
 void readPlate(const OpenSimTable& grf, const std::vector<Eigen::Index>& rows,
@@ -103,6 +147,17 @@ void readPlate(const OpenSimTable& grf, const std::vector<Eigen::Index>& rows,
     leg.cop.row(k) << px(rows[k]), pz(rows[k]);
     leg.contact[k] = fz(rows[k]) > threshold;
   }
+}
+
+// Plate surface height: the mean CoP height while the feet are loaded (an unloaded plate's CoP
+// is meaningless).
+double groundHeight(const ImportedTrial& trial) {
+  double sum = 0.0;
+  int n = 0;
+  for (const ImportedLeg& leg : trial.legs)
+    for (Eigen::Index k = 0; k < leg.cop.rows(); ++k)
+      if (leg.contact[k]) sum += leg.cop(k, 1), ++n;
+  return n ? sum / n : 0.0;
 }
 
 // Contact changes, timed where the vertical force crosses the threshold.
@@ -163,10 +218,10 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
-// Belt speed = −median horizontal velocity of each foot over the middle half of its single
-// supports (the foot is at rest on the belt there).
-template <class Velocity>
-std::optional<double> beltFromStanceFeet(const ImportedTrial& trial, Velocity&& velocity) {
+// f(side, k) at the samples of the middle half of each single support of `side` (the foot is
+// at rest on the ground or the belt there).
+template <class Sample>
+std::vector<double> midStanceSamples(const ImportedTrial& trial, Sample&& f) {
   std::vector<double> samples;
   for (BodySide side : {BodySide::Right, BodySide::Left}) {
     const ImportedLeg& leg = trial.legs[int(side)];
@@ -178,10 +233,19 @@ std::optional<double> beltFromStanceFeet(const ImportedTrial& trial, Velocity&& 
       Eigen::Index end = k;
       while (end < n && leg.contact[end] && !other.contact[end]) ++end;
       for (Eigen::Index j = k + (end - k) / 4; j < end - (end - k) / 4; ++j)
-        samples.push_back(-velocity(side, j));
+        samples.push_back(f(side, j));
       k = end;
     }
   }
+  return samples;
+}
+
+// Belt speed = −median horizontal velocity of the stance foot over the middle half of its
+// single supports.
+template <class Velocity>
+std::optional<double> beltFromStanceFeet(const ImportedTrial& trial, Velocity&& velocity) {
+  const std::vector<double> samples =
+      midStanceSamples(trial, [&](BodySide s, Eigen::Index k) { return -velocity(s, k); });
   if (samples.empty()) return std::nullopt;
   return median(samples);
 }
@@ -216,6 +280,19 @@ void thesisCoordinates(ImportedTrial& trial) {
   }
 }
 
+// CoP x of leg 1 and leg 2; a leg without contact gets its ankle's x (the point foot).
+void copColumns(ImportedTrial& trial, const RobotParams& robot) {
+  const Eigen::Index n = trial.t.size();
+  trial.cop_x.resize(n, 2);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const BodySide sides[2] = {trial.leg1[k], otherSide(trial.leg1[k])};
+    for (int j = 0; j < 2; ++j) {
+      const ImportedLeg& leg = trial.legs[int(sides[j])];
+      trial.cop_x(k, j) = leg.contact[k] ? leg.cop(k, 0) : importedAnkle(trial, robot, sides[j], k).x();
+    }
+  }
+}
+
 }  // namespace
 
 Eigen::Vector2d importedAnkle(const ImportedTrial& trial, const RobotParams& robot, BodySide side,
@@ -243,12 +320,21 @@ ImportedTrial importOpenSimTrial(const OpenSimRecording& recording, const RobotP
         {trc ? trc->file : std::string(), trc ? trc->time.size() : Eigen::Index(3)}}) {
     if (n < 3) throw DataError(file, "", 0, "fewer than 3 samples: nothing to smooth");
   }
-  const std::vector<Eigen::Index> rows = samplesInside(grf, ik);
+  if (!options.pelvis_frame)
+    throw DataError(robot.source_file, "pelvis_frame", 0,
+                    "missing: the import needs the hip and trunk geometry in the IK model's pelvis "
+                    "frame (see configs/robot/human_subject01.yaml)");
   ImportedTrial trial;
+  trial.conventions = resolveConventions(ik, grf, trc ? &*trc : nullptr, options.conventions);
+  const OpenSimConventions& conv = trial.conventions;
+  const std::vector<Eigen::Index> rows =
+      plateSpan(grf, samplesInside(grf, ik, options.time_window), conv, options.contact_threshold,
+                trial.notes);
   trial.t.resize(static_cast<Eigen::Index>(rows.size()));
   for (std::size_t k = 0; k < rows.size(); ++k) trial.t(Eigen::Index(k)) = grf.values(rows[k], 0);
 
-  const SmoothingSpline kin = fitSpline(ik.time(), ikChannels(ik, options.geometry), options.cutoff_hz);
+  const SmoothingSpline kin =
+      fitSpline(ik.time(), ikChannels(ik, conv, *options.pelvis_frame), options.cutoff_hz);
   trial.legs[0].thigh = sampled(kin, trial.t, kThighR);
   trial.legs[0].shank = sampled(kin, trial.t, kShankR);
   trial.legs[1].thigh = sampled(kin, trial.t, kThighL);
@@ -256,29 +342,33 @@ ImportedTrial importOpenSimTrial(const OpenSimRecording& recording, const RobotP
   trial.hip_x = sampled(kin, trial.t, kHipX);
   trial.hip_z = sampled(kin, trial.t, kHipZ);
   if (trc && options.trunk_from_markers) {
-    trial.trunk = sampled(fitSpline(trc->time, markerTrunkAngle(*trc, options), options.cutoff_hz),
+    trial.trunk = sampled(fitSpline(trc->time, markerTrunkAngle(*trc, conv), options.cutoff_hz),
                           trial.t, 0);
     trial.trunk_source = "markers";
   } else {
     trial.trunk = sampled(kin, trial.t, kTrunkModel);
     trial.trunk_source = "IK model CoM";
   }
-  readPlate(grf, rows, options.right_plate, options.contact_threshold, trial.legs[0]);
-  readPlate(grf, rows, options.left_plate, options.contact_threshold, trial.legs[1]);
-  trial.ground_z = 0.5 * (trial.legs[0].cop.col(1).mean() + trial.legs[1].cop.col(1).mean());
+  readPlate(grf, rows, conv.right_plate, options.contact_threshold, trial.legs[0]);
+  readPlate(grf, rows, conv.left_plate, options.contact_threshold, trial.legs[1]);
+  trial.ground_z = groundHeight(trial);
   trial.events = gaitEvents(trial, options.contact_threshold);
   labelLegs(trial, grf, rows);
 
+  Eigen::MatrixXd heel_velocity;
+  if (trc) {
+    Eigen::MatrixXd heels(trc->time.size(), 2);
+    for (int s = 0; s < 2; ++s) heels.col(s) = trc->marker(conv.heel_markers[s]).col(0);
+    heel_velocity = fitSpline(trc->time, heels, options.cutoff_hz).evaluate(trial.t, 1);
+  }
+  const auto heel = [&](BodySide s, Eigen::Index k) { return heel_velocity(k, int(s)); };
   if (options.belt_speed) {
     trial.belt_speed = *options.belt_speed;
     trial.belt_source = "given";
   } else {
     std::optional<double> belt;
     if (trc) {
-      Eigen::MatrixXd heels(trc->time.size(), 2);
-      for (int s = 0; s < 2; ++s) heels.col(s) = trc->marker(options.heel_markers[s]).col(0);
-      const Eigen::MatrixXd v = fitSpline(trc->time, heels, options.cutoff_hz).evaluate(trial.t, 1);
-      belt = beltFromStanceFeet(trial, [&](BodySide s, Eigen::Index k) { return v(k, int(s)); });
+      belt = beltFromStanceFeet(trial, heel);
       trial.belt_source = "heel markers";
     } else {
       belt = beltFromStanceFeet(trial, [&](BodySide s, Eigen::Index k) {
@@ -292,8 +382,14 @@ ImportedTrial importOpenSimTrial(const OpenSimRecording& recording, const RobotP
     }
     trial.belt_speed = *belt;
   }
+  if (trc) {
+    std::vector<double> speed = midStanceSamples(
+        trial, [&](BodySide s, Eigen::Index k) { return std::abs(heel(s, k) + trial.belt_speed); });
+    if (!speed.empty()) trial.stance_heel_speed = median(speed);
+  }
   removeBelt(trial);
   thesisCoordinates(trial);
+  copColumns(trial, robot);
   return trial;
 }
 

@@ -4,9 +4,19 @@
 
 namespace gaitopt {
 
-std::string opensimAnalysisJson(const OpenSimAnalysis& a) {
+std::string opensimAnalysisJson(const OpenSimAnalysis& a, const ImportedTrial& trial) {
   JsonWriter w;
   w.beginObject();
+  w.key("conventions").beginArray();
+  for (const std::string& s : trial.conventions.statements) w.value(s);
+  w.endArray();
+  w.key("notes").beginArray();
+  for (const std::string& s : trial.notes) w.value(s);
+  w.endArray();
+  w.key("belt_speed").value(trial.belt_speed).key("belt_source").value(trial.belt_source);
+  w.key("stance_heel_speed");
+  if (trial.stance_heel_speed) w.value(*trial.stance_heel_speed);
+  else w.null();
   w.key("edge_margin_s").value(a.edge_margin);
   w.key("joint_torques_vs_opensim").beginArray();
   for (const JointComparison& j : a.joints) {

@@ -32,7 +32,10 @@ Header readHeader(const std::vector<std::string>& lines, const std::string& file
       header.end_line = static_cast<int>(i) + 1;
       return header;
     }
-    const auto eq = line.find('=');
+    // `key=value` (version 1 and later); the old SIMM-style header writes `datarows 1501`.
+    auto eq = line.find('=');
+    if (eq == std::string::npos && (line.rfind("datarows ", 0) == 0 || line.rfind("datacolumns ", 0) == 0))
+      eq = line.find(' ');
     if (eq != std::string::npos) {
       header.entries[trimBlanks(line.substr(0, eq))] = {trimBlanks(line.substr(eq + 1)),
                                                         static_cast<int>(i) + 1};
@@ -42,12 +45,11 @@ Header readHeader(const std::vector<std::string>& lines, const std::string& file
                     "no 'endheader' line: not an OpenSim .mot/.sto file, or truncated header");
 }
 
-bool inDegreesFlag(const Header& header, const std::string& file) {
+// The inDegrees flag; absent in files that hold no angles (a GRF .mot written by some tools,
+// the old SIMM-style header with datacolumns/datarows), where it is not needed.
+std::optional<bool> inDegreesFlag(const Header& header, const std::string& file) {
   const auto it = header.entries.find("inDegrees");
-  if (it == header.entries.end()) {
-    throw ConfigError(file, "inDegrees", header.end_line,
-                      "missing from the header: say inDegrees=yes or inDegrees=no");
-  }
+  if (it == header.entries.end()) return std::nullopt;
   if (it->second.value != "yes" && it->second.value != "no") {
     throw ConfigError(file, "inDegrees", it->second.line,
                       "must be 'yes' or 'no', got '" + it->second.value + "'");
@@ -55,16 +57,22 @@ bool inDegreesFlag(const Header& header, const std::string& file) {
   return it->second.value == "yes";
 }
 
-// The header's count under `key`, if it gives one.
-std::optional<long> headerCount(const Header& header, const std::string& key,
-                                const std::string& file) {
-  const auto it = header.entries.find(key);
+struct HeaderCount {
+  long value;
+  std::string key;
+};
+
+// The header's count under `key` or its old-header synonym (datarows), if any.
+std::optional<HeaderCount> headerCount(const Header& header, const std::string& key,
+                                       const std::string& old_key, const std::string& file) {
+  auto it = header.entries.find(key);
+  if (it == header.entries.end()) it = header.entries.find(old_key);
   if (it == header.entries.end()) return std::nullopt;
-  const double v = parseCsvNumber(it->second.value, file, key, it->second.line);
+  const double v = parseCsvNumber(it->second.value, file, it->first, it->second.line);
   if (v < 0 || v > 1e12 || v != std::floor(v)) {
-    throw ConfigError(file, key, it->second.line, "must be a non-negative integer");
+    throw ConfigError(file, it->first, it->second.line, "must be a non-negative integer");
   }
-  return static_cast<long>(v);
+  return HeaderCount{static_cast<long>(v), it->first};
 }
 
 std::vector<std::string> columnNames(const std::vector<std::string>& fields,
@@ -88,17 +96,16 @@ OpenSimTable readOpenSimTable(const std::string& path) {
   const Header header = readHeader(lines, path);
   OpenSimTable table;
   table.file = path;
-  table.in_degrees = inDegreesFlag(header, path);
+  const std::optional<bool> degrees = inDegreesFlag(header, path);
+  table.in_degrees = degrees.value_or(false);
+  table.units_declared = degrees.has_value();
   std::size_t i = static_cast<std::size_t>(header.end_line);
   while (i < lines.size() && trimBlanks(lines[i]).empty()) ++i;
   if (i == lines.size()) throw ConfigError(path, "", static_cast<int>(i), "no column-name row");
   table.columns = columnNames(splitTabFields(lines[i], path, int(i) + 1), path, int(i) + 1);
-  if (const auto n = headerCount(header, "nColumns", path);
-      n && *n != static_cast<long>(table.columns.size())) {
-    throw ConfigError(path, "nColumns", header.entries.at("nColumns").line,
-                      "header says " + std::to_string(*n) + " columns, the name row has " +
-                          std::to_string(table.columns.size()));
-  }
+  // nColumns is not checked: OpenSim reads the name row, and the RRA-adjusted IK .sto it
+  // writes declares more columns (its states) than it holds; every row is checked against the
+  // name row instead.
   std::vector<double> data;
   table.first_data_line = static_cast<int>(i) + 2;
   std::size_t n_rows = 0;
@@ -123,10 +130,11 @@ OpenSimTable readOpenSimTable(const std::string& path) {
     }
     ++n_rows;
   }
-  if (const auto n = headerCount(header, "nRows", path); n && *n != static_cast<long>(n_rows)) {
+  if (const auto n = headerCount(header, "nRows", "datarows", path);
+      n && n->value != static_cast<long>(n_rows)) {
     throw ConfigError(path, "", last_line,
-                      "the file has " + std::to_string(n_rows) + " data rows but its header says nRows=" +
-                          std::to_string(*n) + " (truncated or edited file)");
+                      "the file has " + std::to_string(n_rows) + " data rows but its header says " +
+                          n->key + "=" + std::to_string(n->value) + " (truncated or edited file)");
   }
   if (n_rows < 2) throw ConfigError(path, "", last_line, "fewer than 2 data rows");
   table.values = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic,

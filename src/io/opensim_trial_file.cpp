@@ -3,7 +3,9 @@
 #include <cmath>
 
 #include "gaitopt/io/csv_table.hpp"
+#include "gaitopt/io/opensim_conventions_file.hpp"
 #include "gaitopt/io/opensim_table.hpp"
+#include "gaitopt/io/pelvis_frame_file.hpp"
 #include "gaitopt/io/trc_file.hpp"
 #include "gaitopt/io/yaml_reader.hpp"
 
@@ -14,6 +16,9 @@ namespace {
 // The IK file's inDegrees flag checked against its joint angles: walking keeps every angle the
 // importer reads within half a turn, and bends each knee by more than kMinKneeRange.
 void checkAngleUnits(const OpenSimTable& ik) {
+  if (!ik.units_declared)
+    throw ConfigError(ik.file, "inDegrees", ik.first_data_line,
+                      "missing from the header: the IK angles need inDegrees=yes or inDegrees=no");
   const double unit = ik.in_degrees ? M_PI / 180.0 : 1.0;
   const char* const flag = ik.in_degrees ? "inDegrees=yes" : "inDegrees=no";
   for (const char* name : {"pelvis_tilt", "lumbar_extension", "hip_flexion_r", "hip_flexion_l",
@@ -47,14 +52,19 @@ OpenSimRecording readOpenSimRecording(const OpenSimImportFiles& files) {
 
 ImportedTrial importOpenSimTrial(const OpenSimImportFiles& files, const RobotParams& robot,
                                  const OpenSimImportOptions& options) {
+  OpenSimImportOptions with_hints = options;
+  if (!files.conventions.empty()) with_hints.conventions = readConventionsFile(files.conventions);
+  if (!files.model.empty()) addModelHints(files.model, with_hints.conventions);
+  if (!with_hints.pelvis_frame && !robot.source_file.empty())
+    with_hints.pelvis_frame = loadPelvisFrame(robot.source_file);
   const OpenSimRecording recording = readOpenSimRecording(files);
   return withDataErrorsAsConfigErrors(
-      [&] { return importOpenSimTrial(recording, robot, options); });
+      [&] { return importOpenSimTrial(recording, robot, with_hints); });
 }
 
 std::string importedTrialCsv(const ImportedTrial& trial) {
   std::string out = csvHeader({"t", "alpha", "delta1", "delta2", "delta3", "delta4", "phase",
-                               "stance", "step", "R1x", "R1z", "R2x", "R2z"});
+                               "stance", "step", "R1x", "R1z", "R2x", "R2z", "cop1x", "cop2x"});
   const char* const format = "%.10g";
   for (Eigen::Index k = 0; k < trial.t.size(); ++k) {
     CsvRow row;
@@ -63,6 +73,7 @@ std::string importedTrialCsv(const ImportedTrial& trial) {
     row.text(trial.double_support[k] ? "DS" : "SS").text(sideName(trial.leg1[k]));
     row.integer(trial.step[k]);
     for (int j = 0; j < 4; ++j) row.number(trial.reactions(k, j), format);
+    for (int j = 0; j < 2; ++j) row.number(trial.cop_x(k, j), format);
     out += row.line();
   }
   return out;

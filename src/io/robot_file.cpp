@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "gaitopt/model/support_bar.hpp"
+#include "gaitopt/io/pelvis_frame_file.hpp"
 #include "gaitopt/io/robot_extensions.hpp"
 #include "gaitopt/io/yaml_reader.hpp"
 
@@ -198,6 +199,7 @@ RobotParams parseRobot(const YAML::Node& root, const std::string& file) {
   robot.trunk_length = numberInOr(doc, "trunk_length", ranges::kLength, robot.trunk_length);
   requireComWithinLinks(com_offsets, robot);
   readRobotExtensions(doc, robot);
+  readPelvisFrame(doc, robot.mass[2]);  // checked here, used by the OpenSim import
   doc.rejectUnknownKeys();
   return robot;
 }

@@ -39,10 +39,14 @@ TrcHeader readHeader(const std::vector<std::string>& lines, const std::string& f
     throw ConfigError(file, "", 1, "not a .trc file: the first line must start with PathFileType");
   }
   const std::vector<std::string> names = splitTabFields(lines[1], file, 2);
-  const std::vector<std::string> values = splitTabFields(lines[2], file, 3);
+  std::vector<std::string> values = splitTabFields(lines[2], file, 3);
+  // Some writers pad the values line with empty fields (`100.0\t\t100.0\t\t238`); OpenSim
+  // reads the non-empty ones in order.
+  if (names.size() != values.size())
+    values.erase(std::remove(values.begin(), values.end(), std::string()), values.end());
   if (names.size() != values.size()) {
     throw ConfigError(file, "", 3,
-                      std::to_string(values.size()) + " header values for " +
+                      std::to_string(values.size()) + " non-empty header values for " +
                           std::to_string(names.size()) + " header names on line 2");
   }
   std::map<std::string, std::string> header;

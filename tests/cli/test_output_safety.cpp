@@ -141,8 +141,7 @@ TEST_CASE("output safety: bad output locations of every command", "[reliability]
       {synth + " --out " + robot, "names the input --robot"},
       {synth + " --out .", "is a directory, a file is expected"},
       {opensim + "--out " + quoted(opensimIk()), "names the input --ik"},
-      {opensim + "--out o.csv --report o.csv",
-       "--report 'o.csv' is the same as, or inside, the output --out of this run"},
+      {opensim + "--result " + quoted(opensimIk()), "exists and is not a directory"},
       {opensim + "--out foreign/", "is a directory, a file is expected"},
       {plot + " --out /x/y/z.png", "its directory '/x/y' does not exist"},
   };
@@ -306,7 +305,8 @@ TEST_CASE("output safety: a killed run leaves the old or the new result, never a
   // differs between identical runs.
   const auto requireOldOrNew = [&](const std::string& old_run, const std::string& new_run,
                                    const std::vector<std::string>& delays,
-                                   const std::string& out = "walk") {
+                                   const std::string& out = "walk",
+                                   const std::string& option = "--out") {
     const auto result = [&](const std::string& name) {
       auto entries = snapshot(box.dir / name);
       for (auto& [path, content] : entries) {
@@ -319,25 +319,25 @@ TEST_CASE("output safety: a killed run leaves the old or the new result, never a
       }
       return entries;
     };
-    REQUIRE(box.run(new_run + " --out reference").exit_code == 0);
+    REQUIRE(box.run(new_run + " " + option + " reference").exit_code == 0);
     const auto reference = result("reference");
-    REQUIRE(box.run(old_run + " --out " + out).exit_code == 0);
+    REQUIRE(box.run(old_run + " " + option + " " + out).exit_code == 0);
     const auto old = result(out);
     REQUIRE(old != reference);
     int killed = 0;
     for (const std::string& delay : delays) {
       const CliRun run = box.run("--version >/dev/null; timeout -s KILL " + delay + " " +
-                                 quoted(GAITOPT_CLI) + " " + new_run + " --out " + out);
+                                 quoted(GAITOPT_CLI) + " " + new_run + " " + option + " " + out);
       INFO(new_run << ": killed after " << delay << " s, exit " << run.exit_code);
       killed += run.exit_code == 137;
       const auto now = result(out);
       CHECK((now == old || now == reference));
-      if (now == reference) REQUIRE(box.run(old_run + " --out " + out).exit_code == 0);
+      if (now == reference) REQUIRE(box.run(old_run + " " + option + " " + out).exit_code == 0);
     }
     CHECK(killed > 0);  // at least one run was really killed mid-way
     // A killed run leaves its staging folder; the next run removes it once it is stale.
     for (const std::string& name : stagingEntries(box.dir)) backdate(box.dir / name);
-    REQUIRE(box.run(old_run + " --out " + out).exit_code == 0);
+    REQUIRE(box.run(old_run + " " + option + " " + out).exit_code == 0);
     CHECK(stagingEntries(box.dir).empty());
     fs::remove_all(box.dir / "reference");
     fs::remove_all(box.dir / out);
@@ -387,4 +387,14 @@ TEST_CASE("output safety: a killed run leaves the old or the new result, never a
                   map + " --mu-range 0:1.5:1000 --theta-range -180:0:1000",
                   light ? std::vector<std::string>{"1", "3"}
                         : std::vector<std::string>{"0.2", "1", "2", "2.5", "3", "3.5"});
+  // import-opensim --result: the CSV and the report, one folder published by one rename; about
+  // 0.3 s for the shipped trial with its analysis.
+  const std::string trial = "import-opensim --ik " + quoted(opensimIk()) + " --grf " +
+                            quoted(opensimGrf()) + " --trc " + quoted(opensimTrc()) + " --id " +
+                            quoted(opensimId()) + " --robot " +
+                            quoted(sourcePath("configs/robot/human_subject01.yaml"));
+  requireOldOrNew(trial + " --time-window 0:1.5", trial,
+                  light ? std::vector<std::string>{"0.2", "1"}
+                        : std::vector<std::string>{"0.05", "0.1", "0.15", "0.2", "0.25", "0.3", "0.4"},
+                  "walk", "--result");
 }

@@ -90,6 +90,29 @@ TEST_CASE("measured data: comment lines before the header are skipped, rows stil
   requireBad({"# only a comment"}, "empty file: expected a header row");
 }
 
+TEST_CASE("measured data: optional centres of pressure cop1x, cop2x", "[ident][io]") {
+  std::vector<std::string> rows = validRows();
+  rows[0] += ",cop1x,cop2x";
+  for (std::size_t k = 1; k < rows.size(); ++k) rows[k] += "," + std::to_string(0.01 * k) + ",-0.25";
+  const MeasuredData d = readMeasuredCsv(write(rows));
+  REQUIRE(d.has_cop);
+  REQUIRE(d.cop.size() == 60);
+  CHECK(d.cop[4][0] == Approx(0.05));
+  CHECK(d.cop[4][1] == -0.25);
+  CHECK(measuredCsv(readMeasuredCsv(write({measuredCsv(d)}))) == measuredCsv(d));
+  CHECK_FALSE(readMeasuredCsv(write(validRows())).has_cop);
+  std::vector<std::string> half = validRows();
+  half[0] += ",cop1x";
+  for (std::size_t k = 1; k < half.size(); ++k) half[k] += ",0.1";
+  requireBad(half, "column 'cop2x': missing: give all of its group or none");
+  std::vector<std::string> torque_only;
+  for (const std::string& r : validRows()) torque_only.push_back(r + ",0,0");
+  torque_only[0] = "t,alpha,delta1,delta2,delta3,delta4,phase,stance,step,gamma1,gamma2,gamma3,gamma4,cop1x,cop2x";
+  requireBad(torque_only, "column 'cop1x': centres of pressure need the reaction columns");
+  rows[12] = rows[12].substr(0, rows[12].rfind(',')) + ",nan";
+  requireBad(rows, "row 12, column 'cop2x': not a finite number");
+}
+
 TEST_CASE("measured data: bad data is reported at its row and column", "[ident][io]") {
   std::vector<std::string> rows = validRows();
   SECTION("missing required column") {

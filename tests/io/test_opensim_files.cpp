@@ -96,9 +96,12 @@ TEST_CASE("damaged .mot files are refused naming file, column and line", "[opens
     const std::string p = writeDamaged(dir, lines, {{3, "nRows=1e300"}}, ".mot");
     requireConfigError(load, p, "nRows", 3, "must be a non-negative integer");
   }
-  SECTION("missing inDegrees") {
+  SECTION("missing inDegrees: read with the units undeclared; a malformed one refused") {
     const std::string p = writeDamaged(dir, lines, {{5, "#"}}, ".mot");
-    requireConfigError(load, p, "inDegrees", 6, "missing from the header");
+    CHECK_FALSE(load(p).units_declared);
+    CHECK(load(opensimGrf()).units_declared);
+    const std::string q = writeDamaged(dir, lines, {{5, "inDegrees=maybe"}}, ".mot");
+    requireConfigError(load, q, "inDegrees", 5, "must be 'yes' or 'no', got 'maybe'");
   }
   SECTION("time going backwards") {
     const std::string p = writeDamaged(dir, lines, {{9, lines[7]}}, ".mot");

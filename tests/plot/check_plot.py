@@ -66,13 +66,13 @@ def inputs(binary, kind, scratch):
                  "--effect", "torque_offset@knee_left=-3", "--out", data)
         generate(binary, "diagnose", "--robot", ROBOT, "--data", data, "--out", directory, "--quiet")
         return directory, STEP_RUN, "a step run directory"
-    if kind == "opensim_rocker":  # the --report JSON of the shipped OpenSim trial
-        report = os.path.join(scratch, "report.json")
+    if kind == "opensim_rocker":  # report.json of the shipped OpenSim trial's --result folder
+        result = os.path.join(scratch, "opensim")
         generate(binary, "import-opensim", "--ik", os.path.join(OPENSIM, "subject01_walk_IK.mot"),
                  "--grf", os.path.join(OPENSIM, "subject01_walk_grf.mot"),
                  "--robot", os.path.join(ROOT, "configs", "robot", "human_subject01.yaml"),
-                 "--out", os.path.join(scratch, "walk.csv"), "--report", report)
-        return report, STEP_RUN, "a directory"
+                 "--result", result)
+        return os.path.join(result, "report.json"), STEP_RUN, "a directory"
     if kind == "simulation":  # 3 closed-loop steps of the shipped gait; a step run is refused
         directory = os.path.join(scratch, "simulation")
         generate(binary, "simulate", "--gait", GAIT, "--steps", "3", "--out", directory)

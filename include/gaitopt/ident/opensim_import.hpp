@@ -6,10 +6,13 @@
 // thesis (SS on leg 1; in DS leg 1 is the front leg), and the coordinates q = (α, δ1..δ4) of
 // (1.13) with the reactions on leg 1 and leg 2.
 #include <Eigen/Core>
+#include <array>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "gaitopt/ident/opensim_conventions.hpp"
 #include "gaitopt/ident/recorded_tables.hpp"
 #include "gaitopt/model/robot_params.hpp"
 
@@ -20,19 +23,18 @@ inline const char* sideName(BodySide s) { return s == BodySide::Right ? "right" 
 inline BodySide otherSide(BodySide s) { return s == BodySide::Right ? BodySide::Left : BodySide::Right; }
 
 struct OpenSimRecording {
-  OpenSimTable ik;   // IK .mot: pelvis_tilt, pelvis_tx, pelvis_ty, hip_flexion_r/l, knee_angle_r/l, lumbar_extension
+  OpenSimTable ik;   // IK .mot/.sto: pelvis_tilt, pelvis_tx, pelvis_ty, hip_flexion_r/l, knee_angle_r/l, lumbar_extension
   OpenSimTable grf;  // GRF .mot: <prefix>vx, vy, px, py per plate
   std::optional<TrcData> trc;  // markers for the trunk line and the belt speed
 };
 
-// Geometry of the scaled OpenSim model that the IK coordinates refer to (defaults: the planar
-// gait10dof18musc model scaled to subject01, pelvis frame, metres and kilograms).
-struct OpenSimSubjectGeometry {
-  Eigen::Vector2d hip_in_pelvis{-0.0724, -0.0677};
-  // Only used without markers: trunk line = hip → lumped pelvis + torso CoM.
-  double pelvis_mass = 11.375, torso_mass = 33.068;
-  Eigen::Vector2d pelvis_com{-0.0724, 0.0}, back_in_pelvis{-0.1032, 0.0835},
-      torso_com{-0.0324, 0.3455};  // torso CoM in the torso frame, from the back joint
+// Where the five links of a person lumped from an OpenSim model sit in that model's pelvis frame
+// (x forward, y up at zero pelvis tilt): hip joint centre, pelvis CoM and the back joint [m],
+// torso (+ head, arms) CoM [m] in the torso frame from the back joint, and the two masses [kg]
+// whose sum is the trunk m3. Read from the robot file (io/pelvis_frame_file.hpp).
+struct PelvisFrame {
+  std::array<double, 2> hip{}, pelvis_com{}, back{}, torso_com{};
+  double pelvis_mass = 0.0, torso_mass = 0.0;
 };
 
 struct OpenSimImportOptions {
@@ -42,11 +44,9 @@ struct OpenSimImportOptions {
   // Trunk line from the pelvis-to-shoulder markers when a .trc is given (the data README's
   // advice); false: through the IK model's lumped pelvis + torso CoM even with markers.
   bool trunk_from_markers = true;
-  std::string right_plate = "ground_force_", left_plate = "1_ground_force_";  // GRF column prefixes
-  std::vector<std::string> pelvis_markers{"R.ASIS", "L.ASIS", "V.Sacral"};
-  std::vector<std::string> shoulder_markers{"R.Acromium", "L.Acromium"};
-  std::vector<std::string> heel_markers{"R.Heel", "L.Heel"};  // right, left
-  OpenSimSubjectGeometry geometry;
+  ConventionHints conventions;      // plates, knee sign, coordinate and marker names
+  std::optional<std::pair<double, double>> time_window;  // [s], inclusive; none: the whole record
+  std::optional<PelvisFrame> pelvis_frame;  // the robot's; required (hip and trunk geometry)
 };
 
 // A smoothed signal at the output times: value, first and second time derivative.
@@ -63,7 +63,7 @@ struct GaitEvent {
 struct ImportedLeg {
   SmoothedTrajectory thigh, shank;  // absolute angles, counter-clockwise from the downward vertical
   Eigen::MatrixX2d force;       // ground reaction on the foot (x forward, z up) [N]
-  Eigen::MatrixX2d cop;         // centre of pressure, belt removed [m]
+  Eigen::MatrixX2d cop;         // centre of pressure, belt removed [m] (meaningless without contact)
   std::vector<bool> contact;
 };
 
@@ -79,14 +79,25 @@ struct ImportedTrial {
   std::vector<GaitEvent> events;
   double belt_speed = 0.0;
   std::string belt_source;        // "given", "heel markers", "IK ankle"
+  // Median |horizontal heel-marker velocity| over mid single support after belt removal: a
+  // foot at rest gives ~0; a wrong belt speed or a plate given to the wrong foot does not.
+  std::optional<double> stance_heel_speed;
   std::string trunk_source;       // "markers", "IK model CoM"
   Eigen::MatrixXd q, qd, qdd;     // N × 5, (α, δ1, δ2, δ3, δ4) of (1.13) and derivatives
   Eigen::MatrixXd reactions;      // N × 4: R1x, R1z, R2x, R2z (gravity frame, on the robot)
+  Eigen::MatrixX2d cop_x;         // N × 2: CoP x of leg 1, leg 2, belt removed; the ankle's x
+                                  // (the point foot) while that leg carries no load [m]
+  OpenSimConventions conventions; // as resolved, with how each was decided
+  std::vector<std::string> notes; // samples dropped by the time window or the plate span
 };
 
-// Converts; data that cannot be labelled (no contact, no single support for the belt
-// estimate, force-plate times outside the IK record, a missing column) are DataErrors naming
-// the file. `robot` gives the thigh (l2) and shank (l1) lengths. The files are read by
+// Converts the samples inside the IK record and the time window, restricted to the longest span
+// in which the plates see a foot (an overground trial's steps off the plates are dropped, with a
+// note). Data that cannot be labelled (no contact, no single support for the belt estimate, no
+// force-plate sample in the window, a missing column, conventions that cannot be resolved) are
+// DataErrors naming the file. `robot` gives the thigh (l2) and shank (l1) lengths and
+// options.pelvis_frame (the robot file's) the hip position and trunk geometry in the IK model's
+// pelvis (none: refused, naming robot.source_file). The files are read by
 // io/opensim_trial_file.hpp.
 ImportedTrial importOpenSimTrial(const OpenSimRecording& recording, const RobotParams& robot,
                                  const OpenSimImportOptions& options = {});

@@ -14,11 +14,13 @@ struct OpenSimTable {
   std::vector<std::string> columns;  // columns[0] == "time"
   Eigen::MatrixXd values;            // rows × columns, column 0 the time [s]
   bool in_degrees = false;
+  bool units_declared = true;        // false: no inDegrees line (in_degrees then false)
   int first_data_line = 0;           // 1-based line of the first data row (for messages)
 
   Eigen::Index rows() const { return values.rows(); }
   Eigen::VectorXd time() const { return values.col(0); }
-  // The column called `name`; DataError (file, column) when there is none.
+  // The column called `name`, or the one whose path names it (`/jointset/hip_r/hip_flexion_r/value`
+  // as OpenSim 4 writes coordinates); DataError (file, column) when there is none or several.
   Eigen::VectorXd column(const std::string& name) const;
   bool hasColumn(const std::string& name) const;
 };

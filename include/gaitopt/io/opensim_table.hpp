@@ -11,8 +11,12 @@
 
 namespace gaitopt {
 
-// Throws ConfigError naming the file, the column and the line for: no `endheader`; a missing
-// or malformed inDegrees flag; a header nRows/nColumns that disagrees with the table
+// Both header versions are read: `key=value` lines (version=1 .mot, version=3 .sto) and the old
+// `datarows N` / `datacolumns N` lines. inDegrees is optional (units_declared says whether it
+// was given; the IK reader requires it); nColumns is informative (OpenSim's RRA output declares
+// more columns than it writes) and each row is checked against the name row.
+// Throws ConfigError naming the file, the column and the line for: no `endheader`; a
+// malformed inDegrees flag; a header nRows/datarows that disagrees with the table
 // (e.g. a truncated file); duplicate or empty column names; a first column other than `time`;
 // a row with the wrong number of fields; a non-numeric or non-finite value; a time that does
 // not increase strictly; fewer than 2 rows. Limits: see tab_text.hpp.

@@ -11,7 +11,8 @@
 namespace gaitopt {
 
 // Throws ConfigError naming the file, the column and the line for: a missing or malformed
-// header (wrong first word, header names/values that do not pair up, NumMarkers or
+// header (wrong first word, header names/values that do not pair up once the empty fields of
+// the values line are dropped, NumMarkers or
 // NumFrames not matching the table, Units other than mm/m), a row with the wrong number of
 // fields, an empty (occluded) or non-numeric value, a non-increasing time, a frame count
 // different from NumFrames (truncated file). Gaps are not filled: a marker file with
