@@ -92,6 +92,8 @@ class Lumper {
       link.inertia += (r * ob.inertia * r.transpose())(2, 2) + ob.mass * c.head<2>().squaredNorm();  // Steiner
     }
     if (!(link.inertia > 0.0)) fail(*bodies.begin(), 0, "the lump of " + list(bodies) + " has no inertia about z");
+    if (!std::isfinite(link.mass) || !std::isfinite(link.inertia) || !com.allFinite())
+      fail(*bodies.begin(), 0, "the lump of " + list(bodies) + " has a mass, CoM or inertia beyond double range");
   }
 
   // A leg link from joint centre p (proximal) to d (distal), sagittal components.
@@ -101,7 +103,8 @@ class Lumper {
     massProperties(bodies, out, com);
     const Eigen::Vector2d axis = (d - p).head<2>();
     out.length = axis.norm();
-    if (!(out.length > 0.0)) fail(*bodies.begin(), 0, "its two joint centres coincide in the sagittal plane");
+    if (!(out.length > 0.0) || !std::isfinite(out.length))
+      fail(*bodies.begin(), 0, "the joint centres of the lump of " + list(bodies) + " coincide in the sagittal plane or lie beyond double range");
     const Eigen::Vector2d u = axis / out.length, n(-u.y(), u.x());  // n: forward of a leg pointing down
     out.com = (com - p).head<2>().dot(u);
     out.com_normal = (com - p).head<2>().dot(n);

@@ -1,5 +1,6 @@
 #include "gaitopt/io/osim_model_file.hpp"
 
+#include <cmath>
 #include <sstream>
 
 #include "gaitopt/io/config_error.hpp"
@@ -18,7 +19,12 @@ class OsimReader {
     if (root.name != "OpenSimDocument") fail(root, "", "the root element is '" + root.name + "', not OpenSimDocument");
     const XmlElement& m = required(root, "Model", "");
     OsimModel out;
-    if (const std::string* v = root.attribute("Version")) out.version = static_cast<int>(number(root, "Version", *v));
+    if (const std::string* v = root.attribute("Version")) {
+      const double version = number(root, "Version", *v);
+      if (version < 0.0 || version > 1e6 || version != std::floor(version))
+        fail(root, "Version", "not a document version: '" + printable(*v) + "'");
+      out.version = static_cast<int>(version);
+    }
     if (const std::string* n = m.attribute("name")) out.name = *n;
     if (const XmlElement* g = m.child("gravity")) out.gravity = vector3(*g, "gravity");
     const XmlElement& bodies = objects(required(m, "BodySet", ""), "BodySet");
