@@ -17,11 +17,27 @@ Eigen::Isometry3d offset(const OsimFrame& f) {
   return x;
 }
 
-// X_F,M with every coordinate at 0: only a CustomJoint's functions can move M off F there.
-Eigen::Isometry3d mobilizerAtZero(const OsimJoint& j) {
+using Coordinates = std::map<std::string, double>;
+
+// Coupled coordinates at their couplers' values, the others at 0; a coupler on a coupled
+// coordinate is resolved by repeating the passes (at most one per coupler).
+Coordinates lumpingCoordinates(const OsimModel& model) {
+  Coordinates q;
+  const auto value = [&](const std::string& name) {
+    const auto it = q.find(name);
+    return it == q.end() ? 0.0 : it->second;
+  };
+  for (std::size_t pass = 0; pass < model.couplers.size(); ++pass)
+    for (const OsimCoupler& c : model.couplers) q[c.dependent] = c.scale * osimFunctionValue(c.function, value(c.independent));
+  return q;
+}
+
+// X_F,M at the coordinates `q`: only a CustomJoint's functions can move M off F at zero.
+Eigen::Isometry3d mobilizer(const OsimJoint& j, const Coordinates& q) {
   Eigen::Isometry3d x = Eigen::Isometry3d::Identity();
   for (const OsimTransformAxis& a : j.axes) {
-    const double v = osimFunctionValue(a.function, 0.0);
+    const auto it = a.coordinates.empty() ? q.end() : q.find(a.coordinates.front());
+    const double v = osimFunctionValue(a.function, it == q.end() ? 0.0 : it->second);
     if (a.rotation) x.linear() = x.linear() * Eigen::AngleAxisd(v, a.axis).toRotationMatrix();
     else x.translation() += v * a.axis;
   }
@@ -41,6 +57,7 @@ std::map<std::string, Eigen::Isometry3d> osimPosesAtZero(const OsimModel& model)
                       "body '" + j.child.body + "' is the child of two joints (closed loops are not read)");
     joints_from.emplace(j.parent.body, &j);
   }
+  const Coordinates q = lumpingCoordinates(model);
   // Breadth first from ground: a body is placed once its parent is.
   std::vector<std::string> queue{"ground"};
   for (std::size_t next = 0; next < queue.size(); ++next) {
@@ -49,7 +66,7 @@ std::map<std::string, Eigen::Isometry3d> osimPosesAtZero(const OsimModel& model)
     for (auto it = first; it != last; ++it) {
       const OsimJoint& j = *it->second;
       if (pose.count(j.child.body)) continue;
-      pose[j.child.body] = parent * offset(j.parent) * mobilizerAtZero(j) * offset(j.child).inverse();
+      pose[j.child.body] = parent * offset(j.parent) * mobilizer(j, q) * offset(j.child).inverse();
       queue.push_back(j.child.body);
     }
   }

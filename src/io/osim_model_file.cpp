@@ -37,6 +37,11 @@ class OsimReader {
     for (const XmlElement& b : bodies.children)  // OpenSim 3: the joint inside its child body
       if (const XmlElement* holder = b.name == "Body" ? b.child("Joint") : nullptr)
         for (const XmlElement& j : holder->children) out.joints.push_back(jointV3(j, nameOf(b)));
+    if (const XmlElement* set = m.child("ConstraintSet")) {
+      if (const XmlElement* list = set->child("objects"))
+        for (const XmlElement& c : list->children)
+          if (c.name == "CoordinateCouplerConstraint" && enforced(c)) out.couplers.push_back(coupler(c));
+    }
     for (OsimJoint& j : out.joints) {
       requireBody(out, j, j.parent.body);
       requireBody(out, j, j.child.body);
@@ -221,18 +226,41 @@ class OsimReader {
     return out;
   }
 
-  // The transform function of a TransformAxis (OpenSim 4: an element named "function";
-  // OpenSim 3: a <function> element wrapping it).
-  OsimFunction functionIn(const XmlElement& owner, const std::string& key) const {
-    if (const XmlElement* wrapper = owner.child("function")) {
-      if (wrapper->children.size() != 1) fail(*wrapper, key + ".function", "<function> must hold exactly one function");
-      return function(wrapper->children.front(), key + ".function");
+  // OpenSim 4 writes isEnforced, OpenSim 3 isDisabled.
+  bool enforced(const XmlElement& c) const {
+    const XmlElement* on = c.child("isEnforced");
+    const XmlElement* off = c.child("isDisabled");
+    return !(on && trimmed(on->text) == "false") && !(off && trimmed(off->text) == "true");
+  }
+
+  OsimCoupler coupler(const XmlElement& c) const {
+    OsimCoupler out;
+    const std::string key = nameOf(c);
+    out.line = c.line;
+    out.dependent = trimmed(required(c, "dependent_coordinate_name", key).text);
+    std::istringstream in(required(c, "independent_coordinate_names", key).text);
+    std::vector<std::string> names;
+    for (std::string n; in >> n;) names.push_back(n);
+    if (names.size() != 1 || out.dependent.empty())
+      fail(c, key, "a coupler of one dependent and one independent coordinate is expected");
+    out.independent = names.front();
+    out.function = functionIn(c, key, "coupled_coordinates_function");
+    if (const XmlElement* s = c.child("scale_factor")) out.scale = numbers(*s, key + ".scale_factor", 1)[0];
+    return out;
+  }
+
+  // The function of a TransformAxis, multiplier or coupler: an element named `tag` wrapping
+  // it (OpenSim 3, multipliers, couplers) or the function element named `tag` (OpenSim 4).
+  OsimFunction functionIn(const XmlElement& owner, const std::string& key, const std::string& tag = "function") const {
+    if (const XmlElement* wrapper = owner.child(tag)) {
+      if (wrapper->children.size() != 1) fail(*wrapper, key + "." + tag, "<" + tag + "> must hold exactly one function");
+      return function(wrapper->children.front(), key + "." + tag);
     }
     for (const XmlElement& c : owner.children) {
       const std::string* n = c.attribute("name");
-      if (n && *n == "function") return function(c, key + ".function");
+      if (n && *n == tag) return function(c, key + "." + tag);
     }
-    fail(owner, key, "no transform function");
+    fail(owner, key, "no <" + tag + ">");
   }
 
   OsimFunction function(const XmlElement& f, const std::string& key) const {

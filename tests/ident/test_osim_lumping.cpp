@@ -3,7 +3,8 @@
 // worked out by hand below: pelvis 10 kg at the origin, torso 20 kg 0.3 m above its joint
 // (0.1 m behind and 0.1 m above the pelvis origin), hips 0.1 m below the pelvis origin, femurs
 // 8 kg (left 8.2 kg) with the CoM 0.2 m below the hip, a 0.1 kg patella on each femur 0.05 m
-// ahead of the knee, knees 0.4 m below the hips (a scaled spline), tibias 3 kg with the CoM
+// ahead of the knee, knees 0.4 m below the hips (a scaled spline: in the OpenSim 4 model a
+// knee translation coordinate coupled to the knee angle), tibias 3 kg with the CoM
 // 0.2 m below the knee, ankles 0.4 m below the knees, feet 1 kg with the CoM 0.1 m ahead of
 // and 0.05 m below the ankle (given in a foot frame turned 90° about z).
 #include <catch2/catch.hpp>
@@ -45,13 +46,26 @@ std::string v4LegJoints(const std::string& side, double z) {
     <SpatialTransform>
       <TransformAxis name="rotation1"><coordinates>knee_angle)" + s + R"(</coordinates><axis>0 0 1</axis><LinearFunction name="function"><coefficients>1 0</coefficients></LinearFunction></TransformAxis>
       <TransformAxis name="rotation2"><coordinates></coordinates><axis>0 1 0</axis><Constant name="function"><value>0</value></Constant></TransformAxis>
-      <TransformAxis name="translation2"><coordinates>knee_angle)" + s + R"(</coordinates><axis>0 1 0</axis>
-        <MultiplierFunction name="function"><function><SimmSpline><x>-1 0 1 2</x><y>-0.21 -0.2 -0.205 -0.22</y></SimmSpline></function><scale>2</scale></MultiplierFunction></TransformAxis>
+      <TransformAxis name="translation2"><coordinates>tib_ty)" + s + R"(</coordinates><axis>0 1 0</axis><LinearFunction name="function"><coefficients>1 0</coefficients></LinearFunction></TransformAxis>
     </SpatialTransform></CustomJoint>
   <WeldJoint name="patellofemoral)" + s + R"("><socket_parent_frame>femur_offset</socket_parent_frame><socket_child_frame>/bodyset/patella)" + s + R"(</socket_child_frame>
     <frames><PhysicalOffsetFrame name="femur_offset"><socket_parent>/bodyset/femur)" + s + R"(</socket_parent><translation>0.05 -0.4 0</translation></PhysicalOffsetFrame></frames></WeldJoint>
   <PinJoint name="ankle)" + s + R"("><socket_parent_frame>tibia_offset</socket_parent_frame><socket_child_frame>/bodyset/calcn)" + s + R"(</socket_child_frame>
     <frames><PhysicalOffsetFrame name="tibia_offset"><socket_parent>/bodyset/tibia)" + s + R"(</socket_parent><translation>0 -0.4 0</translation><orientation>0 0 1.5707963267948966</orientation></PhysicalOffsetFrame></frames></PinJoint>)";
+}
+
+// The knee's y translation follows the knee angle through a coupler (OpenSim 3 model: through
+// the transform function itself); a disabled coupler must change nothing.
+std::string v4Couplers(const std::string& side) {
+  const std::string s = "_" + side;
+  return R"(
+  <CoordinateCouplerConstraint name="knee_ty)" + s + R"("><isEnforced>true</isEnforced>
+    <coupled_coordinates_function><SimmSpline><x>-1 0 1 2</x><y>-0.21 -0.2 -0.205 -0.22</y></SimmSpline></coupled_coordinates_function>
+    <independent_coordinate_names>knee_angle)" + s + R"(</independent_coordinate_names><dependent_coordinate_name>tib_ty)" + s + R"(</dependent_coordinate_name>
+    <scale_factor>2</scale_factor></CoordinateCouplerConstraint>
+  <CoordinateCouplerConstraint name="off)" + s + R"("><isEnforced>false</isEnforced>
+    <coupled_coordinates_function><Constant><value>5</value></Constant></coupled_coordinates_function>
+    <independent_coordinate_names>knee_angle)" + s + R"(</independent_coordinate_names><dependent_coordinate_name>tib_ty)" + s + R"(</dependent_coordinate_name></CoordinateCouplerConstraint>)";
 }
 
 std::string v4Model() {
@@ -70,6 +84,8 @@ std::string v4Model() {
     <frames><PhysicalOffsetFrame name="pelvis_offset"><socket_parent>/bodyset/pelvis</socket_parent><translation>-0.1 0.1 0</translation><orientation>0 0 0</orientation></PhysicalOffsetFrame></frames></PinJoint>)" +
          v4LegJoints("r", 0.08) + v4LegJoints("l", -0.08) + R"(
  </objects></JointSet>
+ <ConstraintSet name="constraintset"><objects>)" + v4Couplers("r") + v4Couplers("l") + R"(
+ </objects></ConstraintSet>
 </Model></OpenSimDocument>
 )";
 }
@@ -170,6 +186,10 @@ TEST_CASE("osim lumping: a hand-worked OpenSim 4 model", "[osim]") {
   CHECK(m.joints.size() == 10);
   // Default coordinate values are read but the lumping is at zero angles.
   CHECK(m.joints[0].coordinates.at(0).default_value == 0.9);
+  REQUIRE(m.couplers.size() == 2);  // the disabled ones are left out
+  CHECK(m.couplers[0].dependent == "tib_ty_r");
+  CHECK(m.couplers[0].independent == "knee_angle_r");
+  CHECK(m.couplers[0].scale == 2.0);
   checkTinyLumping(lumpOsimModel(m));
 }
 
@@ -218,7 +238,7 @@ TEST_CASE("osim reader: bad values are named with the body or joint and the line
     return path;
   };
   // Line numbers of the hand-written model: the right femur's body is on line 7, the right hip
-  // joint on line 21, the right knee's translation2 on line 31.
+  // joint on line 21, the right knee's coupler function on line 54.
   test::requireConfigError(load, damaged("<mass>8.000000</mass>", "<mass>8 kg</mass>"), "femur_r.mass", 7,
                            "not a finite number: 'kg'");
   test::requireConfigError(load, damaged("<mass>8.000000</mass>", "<mass>-8</mass>"), "femur_r.mass", 7, "negative mass");
@@ -226,9 +246,9 @@ TEST_CASE("osim reader: bad values are named with the body or joint and the line
                            "femur_r.mass_center", 7, "2 numbers where 3 are expected");
   test::requireConfigError(load, damaged("<SimmSpline><x>-1 0 1 2</x><y>-0.21 -0.2 -0.205 -0.22</y></SimmSpline>",
                                          "<GCVSpline><x>-1 0 1 2</x></GCVSpline>"),
-                           "knee_r.translation2.function.function", 31,
+                           "knee_ty_r.coupled_coordinates_function", 54,
                            "transform function <GCVSpline> is not read");
-  test::requireConfigError(load, damaged("<x>-1 0 1 2</x>", "<x>-1 0 0 2</x>"), "knee_r.translation2.function.function.x", 31,
+  test::requireConfigError(load, damaged("<x>-1 0 1 2</x>", "<x>-1 0 0 2</x>"), "knee_ty_r.coupled_coordinates_function.x", 54,
                            "x values must increase strictly");
   test::requireConfigError(load, damaged("<socket_parent>/bodyset/pelvis</socket_parent><translation>0 -0.1",
                                          "<socket_parent>/bodyset/hips</socket_parent><translation>0 -0.1"),

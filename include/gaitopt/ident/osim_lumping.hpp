@@ -1,6 +1,7 @@
 #pragma once
 // A five-link robot (model/robot_params.hpp) lumped from an OpenSim model in the sagittal
-// plane (OpenSim's x forward, y up) with every coordinate at zero: each leg is split at the
+// plane (OpenSim's x forward, y up) with every coordinate at zero (coupled ones at their
+// couplers' values): each leg is split at the
 // knee into a femur (the thigh body and whatever hangs on it but the shank, e.g. a patella)
 // and a tibia (the shank with the whole foot, rigid at zero ankle, subtalar and toe angles);
 // the trunk is every other body (pelvis, torso, arms, head). Per lump: masses summed, the

@@ -58,6 +58,15 @@ struct OsimBody {
   int line = 0;
 };
 
+// A CoordinateCouplerConstraint: dependent = scale · function(independent) (e.g. a knee's
+// translation coordinates following the knee angle).
+struct OsimCoupler {
+  std::string dependent, independent;
+  OsimFunction function;
+  double scale = 1.0;
+  int line = 0;
+};
+
 struct OsimModel {
   std::string file;  // read from, for messages
   std::string name;
@@ -65,17 +74,19 @@ struct OsimModel {
   Eigen::Vector3d gravity{0.0, -9.80665, 0.0};
   std::vector<OsimBody> bodies;  // without ground
   std::vector<OsimJoint> joints;
+  std::vector<OsimCoupler> couplers;  // enforced ones only
 };
 
 // Value of `f` at coordinate value `q`.
 double osimFunctionValue(const OsimFunction& f, double q);
 
-// Pose in ground of every body (and "ground") with every coordinate at zero: the chain
-// X_G,child = X_G,parent · X_parent,F · X_F,M(0) · X_child,M⁻¹ of each joint, X_F,M(0) the
-// identity except for a CustomJoint (its rotation functions as a body-fixed sequence about
-// their axes, then its translation functions along theirs, all at 0). Throws DataError for a
-// body no joint reaches, a body that is the child of two joints, or a joint whose parent is
-// never reached (a loop).
+// Pose in ground of every body (and "ground") with every independent coordinate at zero and
+// every coupled coordinate at its coupler's value: the chain
+// X_G,child = X_G,parent · X_parent,F · X_F,M(q) · X_child,M⁻¹ of each joint, X_F,M the
+// identity at q = 0 except for a CustomJoint (its rotation functions as a body-fixed sequence
+// about their axes, then its translation functions along theirs). Throws DataError for a body
+// no joint reaches, a body that is the child of two joints, or a joint whose parent is never
+// reached (a loop).
 std::map<std::string, Eigen::Isometry3d> osimPosesAtZero(const OsimModel& model);
 
 }  // namespace gaitopt

@@ -3,7 +3,7 @@
 // mass properties and the joints' frames, coordinates and CustomJoint transforms, from both
 // layouts (OpenSim 3: a <Joint> inside each <Body>, parent_body and location/orientation in
 // parent and child; OpenSim 4: <JointSet> with socket_parent_frame / socket_child_frame and
-// <PhysicalOffsetFrame>s). Muscles, markers, geometry and everything else are skipped.
+// <PhysicalOffsetFrame>s), and the enforced CoordinateCouplerConstraints. Muscles, markers, geometry and everything else are skipped.
 #include <string>
 
 #include "gaitopt/ident/osim_model.hpp"
