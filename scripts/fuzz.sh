@@ -27,6 +27,7 @@ declare -A SEEDS=(
   [fuzz_measured_csv]="fuzz/seeds/measured*.csv"
   [fuzz_opensim_table]="fuzz/seeds/*.mot fuzz/seeds/*.sto"
   [fuzz_trc_file]="fuzz/seeds/*.trc"
+  [fuzz_osim_model]="fuzz/seeds/model.osim"
 )
 
 bash "$ROOT/scripts/build_san.sh"

@@ -13,6 +13,7 @@ void registerEvaluateCommand(CLI::App& app, int& exit_code);
 void registerOptimizeCommand(CLI::App& app, int& exit_code);
 void registerSweepCommands(CLI::App& app, int& exit_code);  // sweep, sweep-merge
 void registerImportOpenSimCommand(CLI::App& app, int& exit_code);
+void registerLumpOsimCommand(CLI::App& app, int& exit_code);
 void registerExportCommand(CLI::App& app, int& exit_code);
 void registerExportModelCommand(CLI::App& app, int& exit_code);
 void registerSimulateCommand(CLI::App& app, int& exit_code);

@@ -72,6 +72,7 @@ int main(int argc, char** argv) {
   gaitopt::cli::registerOptimizeCommand(app, exit_code);
   gaitopt::cli::registerSweepCommands(app, exit_code);
   gaitopt::cli::registerImportOpenSimCommand(app, exit_code);
+  gaitopt::cli::registerLumpOsimCommand(app, exit_code);
   gaitopt::cli::registerExportCommand(app, exit_code);
   gaitopt::cli::registerExportModelCommand(app, exit_code);
   gaitopt::cli::registerSimulateCommand(app, exit_code);
