@@ -125,6 +125,7 @@ class Lumper {
     for (const OsimBody& b : m_.bodies) out.model_mass += b.mass;
     std::set<std::string> legs;
     std::array<Eigen::Vector3d, 2> hips;
+    const OsimJoint* first_hip = nullptr;
     for (int side = 0; side < 2; ++side) {
       const OsimBody& thigh = body(thighs[side]);
       const auto hip_joint = joint_to_.find(thigh.name);
@@ -138,6 +139,7 @@ class Lumper {
         if (!legs.insert(b).second)
           fail(thigh.name, thigh.line, "body '" + b + "' in both legs: the two thighs must be distinct legs");
       hips[side] = centre(*hip_joint->second);
+      if (side == 0) first_hip = hip_joint->second;
       const Eigen::Vector3d k = centre(knee), a = centre(ankle);
       link(femur, hips[side], k, out.femur[side]);
       link(shank, k, a, out.tibia[side]);
@@ -153,9 +155,41 @@ class Lumper {
     out.trunk_com_forward = com.x() - hip.x();
     out.trunk_com_up = com.y() - hip.y();
     out.trunk.com = (com - hip).head<2>().norm();
+    out.pelvis_frame = pelvisFrame(*first_hip, trunk);
     asymmetry(out);
     out.robot = robot(out);
     return out;
+  }
+
+  // The pelvis is the body the first thigh hangs from; the back joint its joint to the heaviest
+  // other trunk subtree; the torso lump every trunk body but the pelvis, so that the two masses
+  // make m3.
+  std::optional<PelvisFrame> pelvisFrame(const OsimJoint& hip, std::set<std::string> trunk) const {
+    const std::string pelvis = hip.parent.body;
+    if (!body_.count(pelvis) || trunk.size() < 2) return std::nullopt;
+    const OsimJoint* back = nullptr;
+    double back_mass = 0.0;
+    const auto [first, last] = joints_from_.equal_range(pelvis);
+    for (auto it = first; it != last; ++it) {
+      const std::string& child = it->second->child.body;
+      const double mass = trunk.count(child) ? massOf(subtree(child)) : 0.0;
+      if (mass > back_mass) back = it->second, back_mass = mass;
+    }
+    if (!back) return std::nullopt;
+    trunk.erase(pelvis);
+    OsimLink torso;
+    Eigen::Vector3d com;
+    massProperties(trunk, torso, com);
+    const auto xy = [](const Eigen::Vector3d& v) { return std::array<double, 2>{v.x(), v.y()}; };
+    const Eigen::Isometry3d to_pelvis = pose_.at(pelvis).inverse();
+    PelvisFrame f;
+    f.hip = xy(to_pelvis * centre(hip));
+    f.pelvis_com = xy(body(pelvis).mass_center);
+    f.pelvis_mass = body(pelvis).mass;
+    f.back = xy(to_pelvis * centre(*back));
+    f.torso_com = xy(pose_.at(back->child.body).inverse() * com - back->child.translation);
+    f.torso_mass = torso.mass;
+    return f;
   }
 
   static void asymmetry(OsimLumping& out) {

@@ -72,6 +72,14 @@ std::string lumpedRobotYaml(const OsimLumping& lumping, const std::string& name,
   y << "joint_limits_deg: {hip_min: " << num(r.limits.hip_min * deg) << ", hip_max: " << num(r.limits.hip_max * deg)
     << ", knee_min: " << num(r.limits.knee_min * deg) << ", knee_max: " << num(r.limits.knee_max * deg) << "}\n"
     << "gravity: " << num(r.gravity) << "\n";
+  if (const auto& f = lumping.pelvis_frame) {
+    const auto pair = [](const std::array<double, 2>& v) { return "[" + num(v[0]) + ", " + num(v[1]) + "]"; };
+    y << "pelvis_frame:  # the model's pelvis frame at zero angles, x forward, y up [m, kg]\n"
+      << "  hip: " << pair(f->hip) << "\n  pelvis_com: " << pair(f->pelvis_com)
+      << "\n  pelvis_mass: " << num(f->pelvis_mass) << "\n  back: " << pair(f->back)
+      << "\n  torso_com: " << pair(f->torso_com) << "  # from the back joint, torso frame\n"
+      << "  torso_mass: " << num(f->torso_mass) << "\n";
+  }
   return y.str();
 }
 

@@ -3,10 +3,12 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <regex>
 #include <string>
 
 #include "gaitopt/io/file_digest.hpp"
+#include "gaitopt/io/pelvis_frame_file.hpp"
 #include "gaitopt/io/robot_file.hpp"
 #include "test_files.hpp"
 #include "test_opensim_data.hpp"
@@ -17,13 +19,30 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-RobotParams lumped(test::ScratchDir& dir, const std::string& model, std::string* text = nullptr) {
+RobotParams lumped(test::ScratchDir& dir, const std::string& model, std::string* text = nullptr,
+                   std::optional<PelvisFrame>* frame = nullptr) {
   const std::string out = dir.fresh("robot") + ".yaml";
   const test::CliRun run = test::runCli("lump-osim --model " + test::quoted(model) + " --out " + test::quoted(out));
   INFO(run.out << run.err);
   REQUIRE(run.exit_code == 0);
   if (text) *text = test::readFile(out);
+  if (frame) *frame = loadPelvisFrame(out);
   return loadRobot(out);
+}
+
+// The pelvis frames agree within `tol` [m, kg] and their masses make the trunk's m3.
+void checkPelvisFrame(const std::optional<PelvisFrame>& a, const std::optional<PelvisFrame>& b,
+                      double tol) {
+  REQUIRE(a);
+  REQUIRE(b);
+  for (int k = 0; k < 2; ++k) {
+    CHECK(a->hip[k] == Approx(b->hip[k]).margin(tol));
+    CHECK(a->pelvis_com[k] == Approx(b->pelvis_com[k]).margin(tol));
+    CHECK(a->back[k] == Approx(b->back[k]).margin(tol));
+    CHECK(a->torso_com[k] == Approx(b->torso_com[k]).margin(tol));
+  }
+  CHECK(a->pelvis_mass == Approx(b->pelvis_mass).margin(tol));
+  CHECK(a->torso_mass == Approx(b->torso_mass).margin(tol));
 }
 
 // The robot file's masses add up to `total` within their rounding to 6 significant digits.
@@ -51,8 +70,9 @@ double massesInFile(const std::string& path) {
 TEST_CASE("lump-osim: subject01.osim gives configs/robot/human_subject01.yaml", "[osim][cli]") {
   test::ScratchDir dir("lump_osim");
   std::string text;
+  std::optional<PelvisFrame> frame;
   const std::string model = test::opensimFile("subject01.osim");
-  const RobotParams r = lumped(dir, model, &text);
+  const RobotParams r = lumped(dir, model, &text, &frame);
   const RobotParams shipped = loadRobot(test::sourcePath("configs/robot/human_subject01.yaml"));
   // The shipped file rounded each value to its last printed digit after summing or combining
   // values that were themselves rounded to that digit (segment masses to 1 g, the trunk CoM's
@@ -86,6 +106,10 @@ TEST_CASE("lump-osim: subject01.osim gives configs/robot/human_subject01.yaml", 
   CHECK(r.l2 == Approx(1.14724 * std::hypot(chord_x, chord_y)).margin(1.14724 * 1e-4));
   CHECK(r.l4 == r.l2);
   checkMassSum(r, massesInFile(model));
+  // The pelvis frame import-opensim places the links with: the shipped file's, rounded to
+  // 0.1 mm and 1 g (the trunk masses sums of rounded segment masses: 1 g each).
+  checkPelvisFrame(frame, loadPelvisFrame(test::sourcePath("configs/robot/human_subject01.yaml")), 1e-3);
+  CHECK(frame->pelvis_mass + frame->torso_mass == Approx(r.mass[2]).margin(1e-5));
   // Provenance: the model's digest and what was dropped.
   CHECK_THAT(text, Contains("sha256 " + fileSha256(model)));
   CHECK_THAT(text, Contains("calcn_r + talus_r + tibia_r + toes_r: 5.09415 kg"));
@@ -97,9 +121,12 @@ TEST_CASE("lump-osim: subject01.osim gives configs/robot/human_subject01.yaml", 
 TEST_CASE("lump-osim: the second shipped person, a Rajagopal-family model", "[osim][cli]") {
   test::ScratchDir dir("lump_osim");
   const std::string model = test::sourcePath("data/opensim-rajagopal-walk/subject_walk_scaled.osim");
-  const RobotParams r = lumped(dir, model);
+  std::optional<PelvisFrame> frame;
+  const RobotParams r = lumped(dir, model, nullptr, &frame);
   // The shipped robot file is this command's output.
-  const RobotParams shipped = loadRobot(test::sourcePath("configs/robot/human_rajagopal_walk.yaml"));
+  const std::string shipped_file = test::sourcePath("configs/robot/human_rajagopal_walk.yaml");
+  const RobotParams shipped = loadRobot(shipped_file);
+  checkPelvisFrame(frame, loadPelvisFrame(shipped_file), 1e-9);
   for (int i = 0; i < 5; ++i) {
     CHECK(shipped.mass[i] == Approx(r.mass[i]).epsilon(1e-5));
     CHECK(shipped.s[i] == Approx(r.s[i]).epsilon(1e-5));

@@ -11,9 +11,11 @@
 // axis). The trunk's axis is the hip-to-CoM line, so s3 is the hip-to-CoM distance. The legs
 // are averaged (the five-link model is symmetric); the "point foot" is the ankle centre.
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "gaitopt/ident/opensim_import.hpp"
 #include "gaitopt/ident/osim_model.hpp"
 #include "gaitopt/model/robot_params.hpp"
 
@@ -39,6 +41,10 @@ struct OsimLumping {
   double asymmetry = 0.0;     // largest |right − left| / mean over the leg quantities
   std::string asymmetry_quantity;  // e.g. "femur length"
   RobotParams robot;               // legs averaged, no motors, no friction, no bar
+  // The hip (first thigh), the back joint and the two trunk lumps in the frame of the body the
+  // thighs hang from, the geometry import-opensim places the links with; none when the thighs
+  // hang from ground or that body carries no other body (no back joint).
+  std::optional<PelvisFrame> pelvis_frame;
 };
 
 // Lumps `model` with the thighs named `thighs` (right, left). Throws DataError (the model's
