@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include "gaitopt/io/config_error.hpp"
 #include "gaitopt/io/csv_table.hpp"
@@ -20,6 +21,7 @@ const std::array<const char*, 9> kRequired = {"t",      "alpha",  "delta1", "del
                                               "delta4", "phase",  "stance", "step"};
 const std::array<const char*, 4> kTorque = {"gamma1", "gamma2", "gamma3", "gamma4"};
 const std::array<const char*, 4> kReactions = {"R1x", "R1z", "R2x", "R2z"};
+const std::array<const char*, 2> kCop = {"cop1x", "cop2x"};
 
 std::vector<std::string> splitCsvLine(std::string line) {
   if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -86,10 +88,11 @@ std::map<std::string, int> readHeader(const CsvContext& ctx, const std::string& 
   const std::vector<std::string> names = splitCsvLine(header);
   for (std::size_t i = 0; i < names.size(); ++i) {
     bool known = false;
-    for (const auto* group : {kRequired.data(), kTorque.data(), kReactions.data()}) {
-      const std::size_t n = group == kRequired.data() ? kRequired.size() : 4;
+    for (const auto& [group, n] : {std::pair{kRequired.data(), kRequired.size()},
+                                   {kTorque.data(), kTorque.size()},
+                                   {kReactions.data(), kReactions.size()},
+                                   {kCop.data(), kCop.size()}})
       for (std::size_t k = 0; k < n; ++k) known = known || names[i] == group[k];
-    }
     if (!known) throw ctx.error(1, printable(names[i]), "unknown column");
     if (!columns.emplace(names[i], static_cast<int>(i)).second)
       throw ctx.error(1, names[i], "duplicate column");
@@ -128,6 +131,7 @@ void appendRow(const RowReader& row, MeasuredData& d) {
   d.step.push_back(static_cast<long>(step));
   if (d.has_torque) d.gamma.push_back(row.four(kTorque));
   if (d.has_reactions) d.reactions.push_back(row.four(kReactions));
+  if (d.has_cop) d.cop.push_back({row.number(kCop[0]), row.number(kCop[1])});
 }
 
 void checkSteps(const CsvContext& ctx, const MeasuredData& d, const std::vector<int>& lines) {
@@ -180,6 +184,9 @@ MeasuredData readMeasuredCsv(const std::string& path) {
   d.has_reactions = optionalGroup(ctx, columns, kReactions);
   if (!d.has_torque && !d.has_reactions)
     throw ctx.error(1, "gamma1", "no torque (gamma1..gamma4) and no reaction (R1x..R2z) columns");
+  d.has_cop = optionalGroup(ctx, columns, kCop);
+  if (d.has_cop && !d.has_reactions)
+    throw ctx.error(1, "cop1x", "centres of pressure need the reaction columns R1x..R2z");
   std::vector<int> lines;
   for (std::size_t i = 1; i < text.size(); ++i) {
     const std::string& line = text[i];
@@ -223,6 +230,7 @@ std::string measuredCsv(const MeasuredData& d) {
   header.texts({"t", "alpha", "delta1", "delta2", "delta3", "delta4", "phase", "stance", "step"});
   if (d.has_torque) header.texts({"gamma1", "gamma2", "gamma3", "gamma4"});
   if (d.has_reactions) header.texts({"R1x", "R1z", "R2x", "R2z"});
+  if (d.has_cop) header.texts({"cop1x", "cop2x"});
   out << header.line();
   for (std::size_t i = 0; i < d.size(); ++i) {
     CsvRow row;
@@ -230,6 +238,7 @@ std::string measuredCsv(const MeasuredData& d) {
     row.text(d.stance[i] == Stance::Left ? "left" : "right").integer(d.step[i]);
     if (d.has_torque) row.numbers(d.gamma[i]);
     if (d.has_reactions) row.numbers(d.reactions[i]);
+    if (d.has_cop) row.number(d.cop[i][0]).number(d.cop[i][1]);
     out << row.line();
   }
   return out.str();

@@ -4,7 +4,9 @@
 // Required columns t, alpha, delta1..delta4, phase (SS/DS), stance (left/right: the physical
 // leg that is leg 1 of the thesis convention at that sample), step (integer, increasing);
 // optional gamma1..gamma4 (measured joint-side motor torques Γ*, motor order) and
-// R1x, R1z, R2x, R2z (ground reactions, gravity frame), each group complete or absent. Columns
+// R1x, R1z, R2x, R2z (ground reactions, gravity frame), and with them cop1x, cop2x (world x of
+// the centre of pressure of leg 1 / leg 2 [m], gravity frame; a leg without load has its point
+// foot's x), each group complete or absent. Columns
 // may come in any order; time may have gaps between steps.
 #include <string>
 
