@@ -9,8 +9,8 @@
 #   scripts/diagnose_hitrate.sh [N=5] [--from FILE]
 #
 # --from FILE: use a saved output of the bench instead of running it (e.g. one run on an idle
-# machine). The raw output is also kept in results/diagnose_hitrate.txt. N = 5 gives 220 cases (220
-# diagnoses, one to a few seconds each.
+# machine). The raw output is also kept in results/diagnose_hitrate.txt. N = 5 gives 220 cases
+# (220 diagnoses, one to a few seconds each).
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
