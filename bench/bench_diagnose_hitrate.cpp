@@ -1,14 +1,15 @@
 // The hidden-effect acceptance of `gaitopt diagnose` over seeded cases, in two profiles:
 // `default` (20 steps, default noise, effects anywhere in synth.hpp randomEffect's ranges) and
 // `short` (12 steps, magnitudes in the lowest quarter of those ranges, every noise ×1.5 —
-// torque, force and the encoder count size). Per profile and N:
+// torque, force, centre of pressure and the encoder count size). Per profile and N:
 //   - singles: per named effect N cases with a random joint and magnitude;
 //   - pairs: N cases of two different random effects, N of Coulomb + viscous friction on one
 //     joint, N of an encoder offset + a backlash on one joint;
 //   - null: 2N cases of the nominal model;
 //   - inertial: N cases of changed link inertials (trunk inertia ×1.3–1.6, femur masses ×1.2–1.4
 //     or tibia CoMs ×1.5–2), which no named effect reproduces: `inertial` is their cause;
-//   - unmodelled: per effect outside the library (synth.hpp: knee_centre, joint_compliance) N
+//   - unmodelled: per effect outside the library (synth.hpp: knee_centre, joint_compliance,
+//     ground_compliance) N
 //     cases; right = no cause and the channel the effect changes most flagged `unexplained`
 //     (the largest noise-normalised RMS change of the nominal residuals on noise-free data).
 // Outcome of a case: `right` (the truth's causes, none else, nothing unexplained; unmodelled:
@@ -143,6 +144,7 @@ struct Bench {
     o.noise = noise;
     o.torque_noise *= profile.noise_scale;
     o.force_noise *= profile.noise_scale;
+    o.cop_noise *= profile.noise_scale;
     o.encoder_counts = static_cast<int>(std::round(o.encoder_counts / profile.noise_scale));
     return o;
   }
@@ -271,7 +273,8 @@ void runProfile(Bench& b, int n, std::vector<std::pair<std::string, EffectRow>>*
       const Diagnosis d = b.run(b.g.robot, {}, o);
       const Outcome out = outcome(d, t);
       ++m.n[out];
-      explain(out, std::string(unmodelledName(u[0].kind)) + "@" + kPhysicalJointNames[u[0].joint] + "=" +
+      const std::string where = u[0].joint == kNoJoint ? "" : std::string("@") + kPhysicalJointNames[u[0].joint];
+      explain(out, std::string(unmodelledName(u[0].kind)) + where + "=" +
                        std::to_string(u[0].value) + ", channel " + kChannelNames[t.channel], d);
     }
     m.print(p, unmodelledName(static_cast<UnmodelledKind>(k)));

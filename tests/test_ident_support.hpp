@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the identification tests.
 #include "gaitopt/ident/residual_model.hpp"
+#include "gaitopt/ident/synth.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "test_support.hpp"
 
@@ -20,6 +21,19 @@ inline PreprocessOptions exactSmoothing() {
 inline const GaitFile& defaultStepGait() {
   static const GaitFile g = loadGaitFile(sourcePath("configs/gait/default_step.yaml"));
   return g;
+}
+
+// `steps` steps of synth data from the default gait with hidden and unmodelled effects.
+inline MeasuredData synthDefaultStep(const std::vector<Effect>& effects,
+                                     const std::vector<UnmodelledEffect>& unmodelled,
+                                     std::uint64_t seed, int steps, bool noise = true) {
+  SynthOptions o;
+  o.steps = steps;
+  o.seed = seed;
+  o.noise = noise;
+  o.unmodelled = unmodelled;
+  const GaitFile& g = defaultStepGait();
+  return synthesize(g.robot, g.parameters, g.options, g.model_options, effects, o);
 }
 
 }  // namespace gaitopt::test

@@ -17,7 +17,7 @@ import numpy as np
 from _common import fail, figure, parse_args, read_csv, save
 
 KIND = "diagnosis"
-UNITS = {"alpha_row": "N·m", "R1x": "N", "R1z": "N", "R2x": "N", "R2z": "N", "ds_foot2_z": "m"}
+UNITS = {"alpha_row": "N·m", "R1x": "N", "R1z": "N", "R2x": "N", "R2z": "N", "ds_foot2_z": "m", "cop1x": "m"}
 
 
 def diagnosis_run(run_dir):

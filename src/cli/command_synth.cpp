@@ -62,7 +62,7 @@ void registerSynthCommand(CLI::App& app, int& exit_code) {
                   "Hidden effect NAME[@JOINT]=VALUE (repeatable), e.g. coulomb@knee_right=3.2");
   cmd->add_option("--unmodelled", args->unmodelled,
                   "Effect outside diagnose's library NAME@JOINT=VALUE (repeatable): "
-                  "knee_centre@KNEE=m/rad, joint_compliance@JOINT=N·m/rad");
+                  "knee_centre@KNEE=m/rad, joint_compliance@JOINT=N·m/rad, ground_compliance=N/m");
   cmd->add_option("--noise", args->noise, "default (2^14 counts/rev, 0.3 N·m, 2 N) or none")
       ->check(CLI::IsMember({"default", "none"}));
   cmd->add_option("--seed", args->options.seed,

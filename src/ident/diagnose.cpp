@@ -9,7 +9,9 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "gaitopt/ident/cop_radius.hpp"
 #include "gaitopt/ident/inertial_stage.hpp"
+#include "gaitopt/ident/leave_one_step_out.hpp"
 #include "gaitopt/ident/model_selection.hpp"
 #include "gaitopt/ident/structured_residual.hpp"
 
@@ -127,6 +129,31 @@ std::vector<Unexplained> unexplained(const Context& ctx, const Evaluation& r, co
   return out;
 }
 
+// The rocker radius of the measured centres of pressure against the diagnosis' (CopComparison).
+CopComparison compareCop(const PreparedData& p, const RobotParams& robot, const ModelOptions& mo,
+                         const Diagnosis& dg) {
+  CopComparison c;
+  if (!p.data.has_cop) return c;
+  c.used = true;
+  const CopRadius cop = copRadius(p, robot, mo, std::vector<char>(p.data.size(), 1));
+  c.radius_cop = cop.radius;
+  c.radius_cop_stderr = cop.stderr_;
+  const auto rocker = [](const Effect& e) { return e.kind == EffectKind::RockerFoot; };
+  for (const Cause& k : dg.causes)
+    if (rocker(k.effect)) {
+      c.radius_fit = robot.foot_radius + k.effect.value;
+      c.radius_fit_stderr = k.stderr_;
+      c.fit_is_cause = true;
+    }
+  for (const CandidateResult& k : dg.candidates)
+    if (!c.fit_is_cause && rocker(k.effect)) {
+      c.radius_fit = robot.foot_radius + k.effect.value;
+      c.radius_fit_stderr = k.stderr_;
+    }
+  c.difference_pct = 100.0 * (c.radius_fit - c.radius_cop) / c.radius_cop;
+  return c;
+}
+
 }  // namespace
 
 const char* signatureName(Signature s) {
@@ -160,6 +187,7 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
   progress("screening: " + std::to_string(lin.candidates.size()) + " candidates linearised", 2);
   Selection sel = selectCauses(ctx, lin, channelSigma(fit, dg.nominal_residuals), o, progress);
   dropOverreaching(ctx, lin, sel, o);
+  dropUndecided(ctx, lin, sel, o);
   dg.candidates = sel.candidates;
   dg.causes = sel.causes;
   dg.partial_fits = sel.rejected;
@@ -169,6 +197,10 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
   if (inertial_allowed) {
     addInertialStage(ctx, lin, sel, o, dg);
     dropOverreachingInertial(ctx, sel, o, dg);
+  }
+  if (!sel.causes.empty() && !dg.inertial.accepted) {
+    const LeaveOneStepOut loso(ctx, sel.model, sel.sigma);
+    dg.step_gain = loso.gain(lin.r0, loso.acting(lin.r0, o.min_channel_gain / 100.0));
   }
   progress(inertial_allowed ? "inertial stage: " +
                                   std::string(dg.inertial.accepted ? "accepted" : "not accepted")
@@ -193,6 +225,7 @@ Diagnosis diagnose(const RobotParams& robot, const ModelOptions& mo, const Measu
   const auto& sn = dg.nominal.simulation_error;
   const auto& se = dg.extended.simulation_error;
   dg.simulation_error_reduction_pct = sn.size() ? pct(sn(5), se(5)) : kNaN;
+  dg.cop = compareCop(prepared, robot, mo, dg);
   dg.smoothing = "local polynomial (Savitzky-Golay) fit of degree " +
                  std::to_string(o.preprocess.order) + " over +-" +
                  std::to_string(static_cast<int>(std::round(o.preprocess.half_window * 1000))) +

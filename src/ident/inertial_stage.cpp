@@ -144,7 +144,7 @@ void addInertialStage(const Context& ctx, const Linearisation& lin, const Select
   }
   dg.inertial = st.result;
   if (st.result.accepted) {
-    dg.causes.push_back({{EffectKind::Inertial, kNoJoint, kNaN}, kNaN, st.result.p_value, {}});
+    dg.causes.push_back({{EffectKind::Inertial, kNoJoint, kNaN}, kNaN, st.result.p_value, {}, {}});
     dg.extended_robot = st.robot;
   }
 }

@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "gaitopt/ident/admissible_range.hpp"
+#include "gaitopt/ident/leave_one_step_out.hpp"
 #include "gaitopt/ident/structured_residual.hpp"
 
 namespace gaitopt::diagnosis {
@@ -186,7 +187,7 @@ Selection selectCauses(const Context& ctx, const Linearisation& lin,
               [&](int a, int b) { return scored[a].result.bic < scored[b].result.bic; });
     const Scored* lowest = &scored[by_bic[0]];
     // The class of the lowest BIC: candidates statistically indistinguishable from it.
-    Cause cause{lowest->result.effect, 0.0, 1.0, {}};
+    Cause cause{lowest->result.effect, 0.0, 1.0, {}, {}};
     const double threshold = chi2Quantile1(o.significance);
     for (const Scored& s : scored)
       if (&s != lowest && s.result.p_value < o.significance &&
@@ -293,6 +294,22 @@ void dropInsignificant(const Context& ctx, const Linearisation& lin, Selection& 
   }
 }
 
+// The causes `keep` (indices into sel.causes) refitted without the others.
+void keepOnly(const Context& ctx, const Linearisation& lin, Selection& sel, const std::vector<int>& keep) {
+  std::vector<int> accepted;
+  std::vector<Cause> causes;
+  for (int i : keep) {
+    accepted.push_back(sel.accepted[i]);
+    causes.push_back(sel.causes[i]);
+  }
+  sel.model = accepted.empty()
+                  ? Fit{{}, lin.r0, {}}
+                  : gaussNewton(ctx, chordFit(ctx, lin, accepted, sel.sigma, kIterations), sel.sigma, 3);
+  for (std::size_t i = 0; i < causes.size(); ++i) causes[i].effect.value = sel.model.effects[i].value;
+  sel.accepted = accepted;
+  sel.causes = causes;
+}
+
 }  // namespace
 
 std::string channelList(const std::vector<int>& channels) {
@@ -337,18 +354,37 @@ void dropOverreaching(const Context& ctx, const Linearisation& lin, Selection& s
                               channels[i]});
     }
     if (keep.size() == sel.causes.size()) return;
-    std::vector<int> accepted;
-    std::vector<Cause> causes;
-    for (int i : keep) {
-      accepted.push_back(sel.accepted[i]);
-      causes.push_back(sel.causes[i]);
+    keepOnly(ctx, lin, sel, keep);
+    dropInsignificant(ctx, lin, sel, o);
+  }
+}
+
+void dropUndecided(const Context& ctx, const Linearisation& lin, Selection& sel,
+                   const DiagnoseOptions& o) {
+  while (!sel.causes.empty()) {
+    const LeaveOneStepOut loso(ctx, sel.model, sel.sigma);
+    std::vector<int> keep;
+    for (std::size_t i = 0; i < sel.causes.size(); ++i) {
+      std::vector<Effect> others = sel.model.effects;
+      others.erase(others.begin() + i);
+      const Evaluation base = others.empty() ? lin.r0 : ctx.evaluate(others);
+      const std::vector<int> channels = loso.acting(base, o.min_channel_gain / 100.0);
+      Cause& c = sel.causes[i];
+      c.step_gain = loso.gain(base, channels);
+      if (c.step_gain.decided()) {
+        keep.push_back(static_cast<int>(i));
+        continue;
+      }
+      char b[200];
+      std::snprintf(b, sizeof b,
+                    "%s: held-out gain %.0f %%, every step left out in turn, 95 %% interval "
+                    "[%.0f, %.0f] %% includes zero: the data do not decide it",
+                    effectLabel(c.effect).c_str(), c.step_gain.pct, c.step_gain.low_pct,
+                    c.step_gain.high_pct);
+      sel.rejected.push_back({c.effect, c.p_value, b, channels});
     }
-    sel.model = accepted.empty()
-                    ? Fit{{}, lin.r0, {}}
-                    : gaussNewton(ctx, chordFit(ctx, lin, accepted, sel.sigma, kIterations), sel.sigma, 3);
-    for (std::size_t i = 0; i < causes.size(); ++i) causes[i].effect.value = sel.model.effects[i].value;
-    sel.accepted = accepted;
-    sel.causes = causes;
+    if (keep.size() == sel.causes.size()) return;
+    keepOnly(ctx, lin, sel, keep);
     dropInsignificant(ctx, lin, sel, o);
   }
 }

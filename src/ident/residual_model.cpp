@@ -13,9 +13,9 @@ namespace gaitopt {
 const std::array<const char*, kNumChannels> kChannelNames = {
     "alpha_row",        "gamma_knee_left", "gamma_hip_left", "gamma_hip_right",
     "gamma_knee_right", "R1x",             "R1z",            "R2x",
-    "R2z",              "ds_foot2_z"};
+    "R2z",              "ds_foot2_z",      "cop1x"};
 const std::array<const char*, kNumChannels> kChannelUnits = {
-    "N·m", "N·m", "N·m", "N·m", "N·m", "N", "N", "N", "N", "m"};
+    "N·m", "N·m", "N·m", "N·m", "N·m", "N", "N", "N", "N", "m", "m"};
 
 namespace {
 
@@ -136,6 +136,20 @@ void doubleSupportRow(const PreparedData& p, const StanceModels& sm, const Kinem
   row[kFoot2z] = f.foot2(1) - f.foot2(0) * std::tan(slope);
 }
 
+// The cop1x channel of a single-support segment (residual_model.hpp): measured minus predicted
+// contact-point travel, each about its mean over the segment.
+void copTravelRows(const PreparedData& p, const RobotParams& robot, const Kinematics& k,
+                   const Segment& s, ResidualMatrix& r) {
+  const MeasuredData& d = p.data;
+  const auto predicted = [&](std::size_t i) {  // rolling without slipping, along the ground
+    return -robot.foot_radius * (k.q[i](0) - robot.ground_slope) * std::cos(robot.ground_slope);
+  };
+  double mean = 0.0;
+  for (std::size_t i = s.begin; i < s.end; ++i) mean += d.cop[i][0] - predicted(i);
+  mean /= static_cast<double>(s.end - s.begin);
+  for (std::size_t i = s.begin; i < s.end; ++i) r(i, kCopX) = d.cop[i][0] - predicted(i) - mean;
+}
+
 }  // namespace
 
 PreparedData::PreparedData(const MeasuredData& d, const PreprocessOptions& o)
@@ -152,7 +166,7 @@ ResidualMatrix residuals(const PreparedData& p, const RobotParams& robot,
   const Kinematics k = linkKinematics(p, robot, sm, p.measured, p.differentiator);
   const Kinematics ka = linkKinematics(p, robot, sm, p.measured_alpha_row, p.alpha_row_differentiator);
   ResidualMatrix r = ResidualMatrix::Constant(p.data.size(), kNumChannels, kNaN);
-  for (const Segment& s : p.segments)
+  for (const Segment& s : p.segments) {
     for (std::size_t i = s.begin; i < s.end; ++i) {
       if (!rows[i]) continue;
       if (s.phase == Phase::SingleSupport)
@@ -160,6 +174,8 @@ ResidualMatrix residuals(const PreparedData& p, const RobotParams& robot,
       else
         doubleSupportRow(p, sm, k, robot.ground_slope, i, r.row(i).data());
     }
+    if (p.data.has_cop && s.phase == Phase::SingleSupport && rows[s.begin]) copTravelRows(p, robot, k, s, r);
+  }
   return r;
 }
 

@@ -45,7 +45,7 @@ struct SignatureData {
   bool available(int signal) const { return signal < 3 || has_torque; }
 
   // The raw measurement noise of each channel: the robust scatter of the measured signal's
-  // second differences — torque of the joint, reaction component; for the channels computed from
+  // second differences — torque of the joint, reaction component, centre of pressure; for the channels computed from
   // the angles alone, the angle scatter times the leg length (rear-foot height) or times the
   // robot's weight and leg length (alpha row, the moment of that angle error).
   std::array<double, kNumChannels> floor{};
@@ -58,11 +58,11 @@ struct SignatureData {
     floor[kAlphaRow] = angle * mass * robot.gravity * leg;
     floor[kFoot2z] = angle * leg;
     // White noise of σ gives second differences of σ √6; a signal sampled at 500 Hz hardly any.
-    const auto scatter = [&](const std::vector<Vec4>& x, int k) {
+    const auto scatter = [&](const auto& x, int k) {
       std::vector<double> v;
       for (const Segment& seg : p.segments)
         for (std::size_t i = seg.begin + 1; i + 1 < seg.end; ++i)
-          v.push_back(x[i + 1](k) - 2.0 * x[i](k) + x[i - 1](k));
+          v.push_back(x[i + 1][k] - 2.0 * x[i][k] + x[i - 1][k]);
       return robustScatter(v) / std::sqrt(6.0);
     };
     if (d.has_torque) {
@@ -72,6 +72,7 @@ struct SignatureData {
     }
     if (d.has_reactions)
       for (int k = 0; k < 4; ++k) floor[kR1x + k] = scatter(d.reactions, k);
+    if (d.has_cop) floor[kCopX] = scatter(d.cop, 0);
   }
 
   // The variables of `signal` at sample i for `channel`: the joint's own for a joint-torque

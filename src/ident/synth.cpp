@@ -1,6 +1,7 @@
 #include "gaitopt/ident/synth.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -23,6 +24,7 @@ struct TrueSample {
   Vec5 q;  // gravity frame
   Vec4 gamma_star;
   Vec4 reactions;
+  std::array<double, 2> cop{};  // world x of the centres of pressure under leg 1, leg 2
 };
 
 // One step's gait variation: velocities, the interior SS point and T_DS move a little, the
@@ -181,6 +183,7 @@ std::vector<TrueSample> stepSamples(const Model& m, const GaitOptions& o,
 struct Noise {
   std::mt19937_64 rng;
   const SynthOptions& o;
+  std::mt19937_64 cop_rng;  // a stream of its own: the other noise does not depend on it
   double quantised(double angle) const {
     if (!o.noise) return angle;
     const double count = 2.0 * M_PI / o.encoder_counts;
@@ -191,6 +194,10 @@ struct Noise {
     Vec4 v;
     for (int j = 0; j < 4; ++j) v(j) = o.noise ? n(rng) : 0.0;
     return v;
+  }
+  std::array<double, 2> cop(const std::array<double, 2>& x) {
+    std::normal_distribution<double> n(0.0, o.cop_noise);
+    return o.noise ? std::array<double, 2>{x[0] + n(cop_rng), x[1] + n(cop_rng)} : x;
   }
 };
 
@@ -213,6 +220,47 @@ Vec4 kneeCentreTorque(const Model& m, Stance stance, const TrueSample& s,
   return torque;
 }
 
+// The ground_compliance forces (synth.hpp) of one step's single support: the stance foot sinks
+// by s = R1z/K, s̈ by second differences of the samples (one-sided at the phase ends).
+void addGroundCompliance(const Model& m, double stiffness, double rate, std::vector<TrueSample>& samples) {
+  std::size_t a = 0;
+  while (a < samples.size() && samples[a].phase != Phase::SingleSupport) ++a;
+  const std::size_t n = samples.size() - a;
+  if (n < 3) return;
+  std::vector<double> sdd(n);
+  const auto sink = [&](std::size_t i) { return samples[a + i].reactions(1) / stiffness; };
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t c = std::clamp<std::size_t>(i, 1, n - 2);
+    sdd[i] = (sink(c + 1) - 2.0 * sink(c) + sink(c - 1)) * rate * rate;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    TrueSample& s = samples[a + i];
+    const Vec2 ankle_acceleration(0.0, -sdd[i]);
+    const ChainState<double> st = chainState(m, s.q, Vec5(Vec5::Zero()));
+    const Vec5 tau = chainPointJacobian(m, m.pinned.b, st).transpose() * ankle_acceleration;
+    s.gamma_star += solveDGamma25(Vec4(tau.tail<4>()));
+    s.reactions.head<2>() += m.total_mass * ankle_acceleration;
+  }
+}
+
+// The centres of pressure of one step (synth.hpp): leg 1's ankle stands at `foot` (world x) in
+// double support, where both feet are points; in single support leg 1's contact rolls with the
+// rocker foot, offset − r (α − slope) along the ground from that ankle. Leg 2 is its point foot
+// (unloaded in single support). `foot` is the previous step's leg 1, this step's rear foot, on
+// entry.
+void setCentresOfPressure(const Model& m, const RobotParams& truth, std::vector<TrueSample>& samples,
+                          double& foot) {
+  const auto rear = [&](const TrueSample& s) {  // leg 2's foot relative to leg 1's ankle
+    return chainPoint(m.pinned.foot2, chainState(m, s.q, Vec5(Vec5::Zero())))(0);
+  };
+  foot -= rear(samples.front());
+  for (TrueSample& s : samples) {
+    const double slope = truth.ground_slope;
+    const double roll = truth.foot_offset - truth.foot_radius * (s.q(0) - slope);
+    s.cop = {s.phase == Phase::DoubleSupport ? foot : foot + roll * std::cos(slope), foot + rear(s)};
+  }
+}
+
 void appendMeasured(const SensorModel& sensors, Stance stance, long step, double t,
                     const TrueSample& s, Noise& noise, MeasuredData& d) {
   const SensorReading r = sensorReading(sensors, stance, s.q, s.gamma_star);
@@ -230,6 +278,7 @@ void appendMeasured(const SensorModel& sensors, Stance stance, long step, double
   d.step.push_back(step);
   d.gamma.push_back(r.gamma + noise.gaussian(noise.o.torque_noise));
   d.reactions.push_back(s.reactions + noise.gaussian(noise.o.force_noise));
+  d.cop.push_back(noise.cop(s.cop));
 }
 
 }  // namespace
@@ -248,10 +297,11 @@ MeasuredData synthesize(const RobotParams& robot, const GaitParameters& gait,
   }
   // Separate streams: the same seed gives the same motion with and without noise.
   std::mt19937_64 excitation(options.seed);
-  Noise noise{std::mt19937_64(options.seed ^ 0x9E3779B97F4A7C15ULL), options};
+  Noise noise{std::mt19937_64(options.seed ^ 0x9E3779B97F4A7C15ULL), options,
+              std::mt19937_64(options.seed ^ 0xC2B2AE3D27D4EB4FULL)};
   MeasuredData d;
-  d.has_torque = d.has_reactions = true;
-  double t0 = 0.0;
+  d.has_torque = d.has_reactions = d.has_cop = true;
+  double t0 = 0.0, foot = 0.0;
   for (int step = 0; step < options.steps; ++step) {
     const Stance stance = step % 2 == 0 ? Stance::Left : Stance::Right;
     const GaitEvaluator& ev = *evaluators[static_cast<int>(stance)];
@@ -268,6 +318,10 @@ MeasuredData synthesize(const RobotParams& robot, const GaitParameters& gait,
                                ": no variation of the gait is walkable by the TRUE model");
     for (TrueSample& sample : samples)
       sample.gamma_star += kneeCentreTorque(models[static_cast<int>(stance)], stance, sample, options.unmodelled);
+    for (const UnmodelledEffect& e : options.unmodelled)
+      if (e.kind == UnmodelledKind::GroundCompliance)
+        addGroundCompliance(models[static_cast<int>(stance)], e.value, options.rate, samples);
+    setCentresOfPressure(models[static_cast<int>(stance)], truth, samples, foot);
     for (std::size_t k = 0; k < samples.size(); ++k)
       appendMeasured(truth.sensors, stance, step, t0 + k / options.rate, samples[k], noise, d);
     t0 += samples.size() / options.rate;
@@ -306,32 +360,46 @@ UnmodelledEffect randomUnmodelled(UnmodelledKind kind, std::mt19937_64& rng, boo
   switch (kind) {
     case UnmodelledKind::KneeCentre: return {kind, joint < 2 ? 0 : 3, u(0.01, low ? 0.0125 : 0.02)};
     case UnmodelledKind::JointCompliance: return {kind, joint, u(low ? 3500.0 : 2000.0, 4000.0)};
+    case UnmodelledKind::GroundCompliance: return {kind, kNoJoint, u(low ? 6250.0 : 4000.0, 7000.0)};
   }
   return {kind};
 }
 
 const char* unmodelledName(UnmodelledKind kind) {
-  return kind == UnmodelledKind::KneeCentre ? "knee_centre" : "joint_compliance";
+  static const char* names[kNumUnmodelledKinds] = {"knee_centre", "joint_compliance", "ground_compliance"};
+  return names[static_cast<int>(kind)];
 }
 
 const char* unmodelledUnit(UnmodelledKind kind) {
-  return kind == UnmodelledKind::KneeCentre ? "m/rad" : "N·m/rad";
+  static const char* units[kNumUnmodelledKinds] = {"m/rad", "N·m/rad", "N/m"};
+  return units[static_cast<int>(kind)];
 }
 
 UnmodelledEffect parseUnmodelledSpec(const std::string& spec) {
   const std::size_t eq = spec.find('='), at = spec.find('@');
-  if (eq == std::string::npos || at == std::string::npos || at > eq)
-    throw std::invalid_argument("expected NAME@JOINT=VALUE");
-  const std::string name = spec.substr(0, at), joint = spec.substr(at + 1, eq - at - 1);
+  if (eq == std::string::npos || (at != std::string::npos && at > eq))
+    throw std::invalid_argument("expected NAME@JOINT=VALUE or ground_compliance=VALUE");
+  const std::string name = spec.substr(0, std::min(at, eq));
+  const std::string joint = at == std::string::npos ? "" : spec.substr(at + 1, eq - at - 1);
   UnmodelledEffect e;
-  if (name == unmodelledName(UnmodelledKind::JointCompliance)) e.kind = UnmodelledKind::JointCompliance;
-  else if (name != unmodelledName(UnmodelledKind::KneeCentre))
+  bool known = false;
+  for (int k = 0; k < kNumUnmodelledKinds; ++k)
+    if (name == unmodelledName(static_cast<UnmodelledKind>(k))) {
+      e.kind = static_cast<UnmodelledKind>(k);
+      known = true;
+    }
+  if (!known)
     throw std::invalid_argument("unknown unmodelled effect '" + name + "'");
   e.joint = -1;
   for (int j = 0; j < 4; ++j)
     if (joint == kPhysicalJointNames[j]) e.joint = j;
-  if (e.joint < 0 || (e.kind == UnmodelledKind::KneeCentre && e.joint != 0 && e.joint != 3))
+  if (e.kind == UnmodelledKind::GroundCompliance) {
+    if (!joint.empty() || at != std::string::npos)
+      throw std::invalid_argument("ground_compliance takes no joint: ground_compliance=VALUE");
+    e.joint = kNoJoint;
+  } else if (e.joint < 0 || (e.kind == UnmodelledKind::KneeCentre && e.joint != 0 && e.joint != 3)) {
     throw std::invalid_argument("unknown joint '" + joint + "' for " + name);
+  }
   e.value = parseEffectValue(spec.substr(eq + 1));
   if (e.value <= 0.0) throw std::invalid_argument(name + " must be > 0");
   return e;

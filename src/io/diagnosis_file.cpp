@@ -99,7 +99,8 @@ std::string jointPhrase(int channel) {
       "single-support foot moment (alpha row)", "left-knee torque", "left-hip torque",
       "right-hip torque", "right-knee torque", "horizontal stance-foot reaction",
       "vertical stance-foot reaction", "horizontal rear-foot reaction",
-      "vertical rear-foot reaction", "rear-foot height in double support"};
+      "vertical rear-foot reaction", "rear-foot height in double support",
+      "stance-foot centre-of-pressure travel"};
   return phrases[channel];
 }
 
@@ -171,6 +172,18 @@ std::string unexplainedSentence(const Diagnosis& d) {
   return reasons.empty() ? out : out + " (" + reasons + ")";
 }
 
+void gainIntervalJson(JsonWriter& w, const std::string& key, const GainInterval& g) {
+  w.key(key).beginObject().key("pct").value(g.pct).key("low_pct").value(g.low_pct);
+  w.key("high_pct").value(g.high_pct).key("steps").value(g.steps).endObject();
+}
+
+// "45 % [30, 60] %, every step left out in turn" or "" when not computed.
+std::string stepGainPhrase(const GainInterval& g) {
+  if (!std::isfinite(g.pct)) return "";
+  return fmt(g.pct, "%.0f") + " % (95 % interval " + fmt(g.low_pct, "%.0f") + " to " +
+         fmt(g.high_pct, "%.0f") + " %) with every step left out in turn";
+}
+
 }  // namespace
 
 std::string diagnosisJson(const Diagnosis& d) {
@@ -187,6 +200,7 @@ std::string diagnosisJson(const Diagnosis& d) {
     jointValue(w, c.effect);
     w.key("stderr").value(c.stderr_).key("unit").value(effectInfo(c.effect.kind).unit);
     w.key("p_value").value(c.p_value);
+    gainIntervalJson(w, "heldout_gain", c.step_gain);
     w.key("confounded_with").beginArray();
     for (const std::string& s : c.confounded_with) w.value(s);
     w.endArray().endObject();
@@ -224,8 +238,14 @@ std::string diagnosisJson(const Diagnosis& d) {
   for (int c : d.effect_channels) w.value(kChannelNames[c]);
   w.endArray().key("effect_channels_pct").value(d.effect_channels_pct);
   w.key("simulation_error_reduction_pct").value(d.simulation_error_reduction_pct);
+  gainIntervalJson(w, "leave_one_step_out", d.step_gain);
   w.endObject();
   inertialJson(w, d.inertial);
+  w.key("centre_of_pressure").beginObject().key("used").value(d.cop.used);
+  w.key("radius_cop").value(d.cop.radius_cop).key("radius_cop_stderr").value(d.cop.radius_cop_stderr);
+  w.key("radius_fit").value(d.cop.radius_fit).key("radius_fit_stderr").value(d.cop.radius_fit_stderr);
+  w.key("radius_fit_is_cause").value(d.cop.fit_is_cause);
+  w.key("difference_pct").value(d.cop.difference_pct).endObject();
   w.endObject();
   return w.str() + "\n";
 }
@@ -304,7 +324,8 @@ std::string diagnosisReport(const Diagnosis& d) {
     out << "; predictions on held-out steps improve by " << fmt(d.effect_channels_pct, "%.0f")
         << " % on the channels the causes act on (" << fmt(d.overall_pct, "%.0f")
         << " % over all channels, " << fmt(d.rms_reduction_pct[channel], "%.0f")
-        << " % on that channel)"
+        << " % on that channel"
+        << (std::isfinite(d.step_gain.pct) ? "; " + stepGainPhrase(d.step_gain) : "") << ")"
         << (d.unexplained.empty() ? "" : "; " + unexplainedSentence(d)) << ".\n\n";
   }
   out << "## Causes\n\n";
@@ -316,6 +337,7 @@ std::string diagnosisReport(const Diagnosis& d) {
       out << "= " << fmt(c.effect.value, "%.4g") << " ± " << fmt(c.stderr_, "%.2g") << " "
           << effectInfo(c.effect.kind).unit;
     out << ", p = " << fmt(c.p_value, "%.2g");
+    if (std::isfinite(c.step_gain.pct)) out << "; held-out gain " << stepGainPhrase(c.step_gain);
     if (!c.confounded_with.empty()) {
       out << "; the data cannot tell it from:";
       for (const std::string& s : c.confounded_with) out << " `" << s << "`";
@@ -323,6 +345,12 @@ std::string diagnosisReport(const Diagnosis& d) {
     out << "\n";
   }
   if (d.causes.empty()) out << "none\n";
+  if (d.cop.used)
+    out << "\nThe measured centres of pressure are used (channel cop1x): rocker radius from them alone "
+        << fmt(d.cop.radius_cop) << " ± " << fmt(d.cop.radius_cop_stderr, "%.2g") << " m, fitted "
+        << fmt(d.cop.radius_fit) << " ± " << fmt(d.cop.radius_fit_stderr, "%.2g") << " m ("
+        << (d.cop.fit_is_cause ? "the rocker_foot cause" : "the rocker_foot candidate, not a cause")
+        << "), " << fmt(d.cop.difference_pct, "%+.0f") << " %.\n";
   out << "\n## Not explained\n\n";
   for (const Unexplained& u : d.unexplained)
     out << "- `" << kChannelNames[u.channel] << "`: held-out RMS " << fmt(u.heldout_rms) << " "

@@ -25,7 +25,9 @@ std::string synthTruthJson(const std::string& robot_path, const std::string& gai
   w.endArray().key("unmodelled").beginArray();
   for (const UnmodelledEffect& e : o.unmodelled) {
     w.beginObject().key("effect").value(unmodelledName(e.kind));
-    w.key("joint").value(kPhysicalJointNames[e.joint]).key("value").value(e.value);
+    w.key("joint");
+    if (e.joint == kNoJoint) w.null(); else w.value(kPhysicalJointNames[e.joint]);
+    w.key("value").value(e.value);
     w.key("unit").value(unmodelledUnit(e.kind)).endObject();
   }
   w.endArray().endObject();

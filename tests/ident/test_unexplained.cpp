@@ -27,12 +27,7 @@ const GaitFile& gait() { return test::defaultStepGait(); }
 
 MeasuredData synth(const std::vector<Effect>& effects, const std::vector<UnmodelledEffect>& unmodelled,
                    std::uint64_t seed, int steps = 20, bool noise = true) {
-  SynthOptions o;
-  o.steps = steps;
-  o.seed = seed;
-  o.noise = noise;
-  o.unmodelled = unmodelled;
-  return synthesize(gait().robot, gait().parameters, gait().options, gait().model_options, effects, o);
+  return test::synthDefaultStep(effects, unmodelled, seed, steps, noise);
 }
 
 Diagnosis diagnoseData(const MeasuredData& d) { return diagnose(gait().robot, gait().model_options, d); }

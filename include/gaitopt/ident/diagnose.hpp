@@ -31,11 +31,14 @@
 // also above the data's angle resolution; the inertial fit with no consistency constraint
 // binding), its value at the converged model still significant, and it must leave no
 // significant structured residual (ident/structured_residual.hpp) on a channel it acts on;
-// otherwise it is a partial fit. `unexplained`: the channels whose held-out residual is still
+// otherwise it is a partial fit. Nor is a cause whose held-out gain, every step left out in
+// turn, has a 95 % interval including zero (ident/leave_one_step_out.hpp): the data do not
+// decide it. `unexplained`: the channels whose held-out residual is still
 // structured after the causes, with the partial fits that act on them.
 // Gain: effect_channels_pct, on the channels the causes act on (those carrying 90 % of the
 // noise-normalised change in the held-out predictions); overall_pct over every channel.
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -103,10 +106,21 @@ struct InertialResult {
   double holdout_rms_before = 0.0, holdout_rms_after = 0.0;  // normalised, held-out steps
 };
 
+// A held-out gain from leaving out every step in turn (ident/leave_one_step_out.hpp), with its
+// 95 % interval over the steps [%]; NaN when not computed.
+struct GainInterval {
+  double pct = std::numeric_limits<double>::quiet_NaN();
+  double low_pct = std::numeric_limits<double>::quiet_NaN();
+  double high_pct = std::numeric_limits<double>::quiet_NaN();
+  int steps = 0;
+  bool decided() const { return low_pct > 0.0; }  // the interval excludes zero
+};
+
 struct Cause {
   Effect effect;
   double stderr_ = 0.0, p_value = 1.0;
   std::vector<std::string> confounded_with;
+  GainInterval step_gain;  // over the model without this cause, on the channels it acts on
 };
 
 // What an unexplained residual follows best (ident/structured_residual.hpp).
@@ -132,6 +146,19 @@ struct Unexplained {
   std::vector<PartialFit> partial_fits;  // candidates acting on this channel that are not causes
 };
 
+// With measured centres of pressure: the rocker radius they give alone (ident/cop_radius.hpp)
+// and the one the diagnosis fitted (the `rocker_foot` cause, or its first-round candidate when it
+// is not a cause), both total [m], and their difference relative to the CoP's [%].
+struct CopComparison {
+  bool used = false;
+  double radius_cop = std::numeric_limits<double>::quiet_NaN();
+  double radius_cop_stderr = std::numeric_limits<double>::quiet_NaN();
+  double radius_fit = std::numeric_limits<double>::quiet_NaN();
+  double radius_fit_stderr = std::numeric_limits<double>::quiet_NaN();
+  bool fit_is_cause = false;
+  double difference_pct = std::numeric_limits<double>::quiet_NaN();
+};
+
 struct Diagnosis {
   std::vector<char> holdout_rows, fit_rows;
   ChannelReport nominal_all, nominal, extended;  // nominal_all: every step; others: held out
@@ -150,6 +177,10 @@ struct Diagnosis {
   // noise-normalised held-out RMS [%].
   std::vector<int> effect_channels;
   double effect_channels_pct = 0.0;
+  // The named causes' model against the nominal one on the channels it acts on, every step left
+  // out in turn (NaN without a named cause or with the inertial cause).
+  GainInterval step_gain;
+  CopComparison cop;
 };
 
 // Throws std::invalid_argument for holdout < 2 or when fewer than two fit steps remain.

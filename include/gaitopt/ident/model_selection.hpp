@@ -37,6 +37,12 @@ Selection selectCauses(const Context& ctx, const Linearisation& lin,
 void dropOverreaching(const Context& ctx, const Linearisation& lin, Selection& sel,
                       const DiagnoseOptions& o);
 
+// A cause whose leave-one-step-out gain over the model without it (on the channels it acts on)
+// has a 95 % interval including zero is not decided by the data: it moves to `rejected` and the
+// rest are refitted, until every cause is decided. Sets each cause's step_gain.
+void dropUndecided(const Context& ctx, const Linearisation& lin, Selection& sel,
+                   const DiagnoseOptions& o);
+
 // Names of `channels`, comma-separated.
 std::string channelList(const std::vector<int>& channels);
 

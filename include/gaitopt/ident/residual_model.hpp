@@ -9,7 +9,12 @@
 //    the measured torques);
 //  - R1x, R1z, R2x, R2z: measured − predicted reactions (Newton (1.36), R2 = 0 in SS; in DS
 //    R2z by the α-row (3.58) and R1 by (3.59), R2x being measured, so no R2x residual);
-//  - ds_foot2_z (DS): height of the rear foot above the ground line z = x tan(slope).
+//  - ds_foot2_z (DS): height of the rear foot above the ground line z = x tan(slope);
+//  - cop1x (SS, with measured centres of pressure): the stance foot's measured CoP travel minus
+//    the model's contact-point travel, each about its mean over the stance (the data do not say
+//    where the ankle stands): a point foot's contact does not move, a rocker's rolls back by r
+//    per radian the tibia turns, −r (α − slope) along the ground. This measures the moment arm
+//    of the ground reaction about the point foot, i.e. the foot moment, up to a constant per step.
 // Unavailable entries are NaN.
 #include <Eigen/Core>
 #include <array>
@@ -22,7 +27,7 @@ namespace gaitopt {
 
 enum Channel : int {
   kAlphaRow = 0, kGammaKneeLeft, kGammaHipLeft, kGammaHipRight, kGammaKneeRight,
-  kR1x, kR1z, kR2x, kR2z, kFoot2z, kNumChannels
+  kR1x, kR1z, kR2x, kR2z, kFoot2z, kCopX, kNumChannels
 };
 extern const std::array<const char*, kNumChannels> kChannelNames;
 extern const std::array<const char*, kNumChannels> kChannelUnits;

@@ -13,7 +13,7 @@
 // Test: T = rᵀŷ on the held-out steps, under "noise only" of mean 0 and variance
 // φ σ² ‖ŷ‖² (σ² the variance of r − ŷ, the noise; φ = 1 + 2 Σ ρ_k the inflation by the
 // autocorrelation of r − ŷ, i.e. the effective sample size n/φ); one-sided normal p-value.
-// Structured when p < significance / 10 (ten channels) AND the prediction removes at least
+// Structured when p < significance / kNumChannels (Bonferroni over the channels) AND the prediction removes at least
 // `min_gain` % of the held-out RMS (the smoothing bias alone is significant on thousands of
 // samples) AND the structured RMS √(heldout² − noise²) exceeds the data's raw noise of the
 // channel and `signal_share` of its measured signal's RMS.

@@ -6,8 +6,9 @@
 // TRUE model's zero dynamics from the gait's initial α̇ (integrated here, so that a ground
 // slope — gravity tilted in the gait's frame — is included); torques and reactions come from
 // the TRUE model's inverse dynamics, in double support with the torque-optimal split
-// R2x = argmin ‖Γ*‖² = Kᵀ J / Kᵀ K of (3.62). Then the sensor effects, encoder quantisation,
-// torque and force noise.
+// R2x = argmin ‖Γ*‖² = Kᵀ J / Kᵀ K of (3.62). The centres of pressure: the point feet in double
+// support, the rolling contact of a rocker foot in single support. Then the sensor effects,
+// encoder quantisation, torque, force and centre-of-pressure noise.
 #include <cstdint>
 #include <random>
 #include <string>
@@ -31,16 +32,23 @@ namespace gaitopt {
 //    to that knee's torque. First order in the excursion: the angles stay the revolute knee's.
 //  - joint_compliance@JOINT = K [N·m/rad]: series elasticity between the motor and the link; the
 //    encoder reads the link angle + Γ*/K.
-enum class UnmodelledKind { KneeCentre, JointCompliance };
-constexpr int kNumUnmodelledKinds = 2;
+//  - ground_compliance = K [N/m]: the ground under the stance foot is a vertical spring, the
+//    foot sinks by s = R1z/K in single support. The ankle's acceleration a_A = (0, −s̈) adds
+//    M a_A to the ground reaction and, in the frame translating with the ankle (as for the rocker
+//    foot, model/rocker_foot.hpp), J_bᵀ a_A to the joint torques. First order in the sinking:
+//    the angles stay the rigid ground's motion, s from the rigid ground's R1z.
+enum class UnmodelledKind { KneeCentre, JointCompliance, GroundCompliance };
+constexpr int kNumUnmodelledKinds = 3;
 struct UnmodelledEffect {
   UnmodelledKind kind = UnmodelledKind::KneeCentre;
-  int joint = 0;  // physical joint (a knee for knee_centre)
+  int joint = 0;  // physical joint (a knee for knee_centre; kNoJoint for ground_compliance)
   double value = 0.0;
 };
-const char* unmodelledName(UnmodelledKind kind);  // "knee_centre", "joint_compliance"
+// "knee_centre", "joint_compliance", "ground_compliance"
+const char* unmodelledName(UnmodelledKind kind);
 const char* unmodelledUnit(UnmodelledKind kind);
-// Parses "NAME@JOINT=VALUE" (std::invalid_argument with the reason on a bad spec).
+// Parses "NAME@JOINT=VALUE", "ground_compliance=VALUE" (std::invalid_argument with the reason
+// on a bad spec).
 UnmodelledEffect parseUnmodelledSpec(const std::string& spec);
 // The closed range of values `synth` accepts for `e` on `robot`: knee_centre (0, the shorter
 // femur's length per radian]; joint_compliance [the robot's peak envelope torque per radian,
@@ -55,6 +63,7 @@ struct SynthOptions {
   int encoder_counts = 1 << 14;  // per revolution, on α and the joint-side motor angles
   double torque_noise = 0.3;     // standard deviation [N·m]
   double force_noise = 2.0;      // standard deviation [N]
+  double cop_noise = 0.002;      // standard deviation of the centres of pressure [m]
   double variation = 1.0;        // scale of the per-step random gait variation (0: none)
   std::vector<UnmodelledEffect> unmodelled;  // effects outside the library, see above
 };
@@ -74,7 +83,9 @@ MeasuredData synthesize(const RobotParams& robot, const GaitParameters& gait,
 Effect randomEffect(EffectKind kind, std::mt19937_64& rng, bool low = false);
 
 // An unmodelled effect with a seeded random joint and magnitude: knee_centre 0.01–0.02 m/rad,
-// joint_compliance 2000–4000 N·m/rad (`low`: the weakest quarter of each range).
+// joint_compliance 2000–4000 N·m/rad, ground_compliance 4000–7000 N/m (the
+// stance foot sinks 5–8 cm: sand, a gym mat) (`low`: the weakest quarter
+// of each range).
 UnmodelledEffect randomUnmodelled(UnmodelledKind kind, std::mt19937_64& rng, bool low = false);
 
 }  // namespace gaitopt
