@@ -74,10 +74,8 @@ TEST_CASE("lump-osim: subject01.osim gives configs/robot/human_subject01.yaml", 
   const std::string model = test::opensimFile("subject01.osim");
   const RobotParams r = lumped(dir, model, &text, &frame);
   const RobotParams shipped = loadRobot(test::sourcePath("configs/robot/human_subject01.yaml"));
-  // The shipped file rounded each value to its last printed digit after summing or combining
-  // values that were themselves rounded to that digit (segment masses to 1 g, the trunk CoM's
-  // components to 0.1 mm): half a unit for the final rounding plus at most half a unit carried
-  // from the parts, so one unit of the last digit.
+  // The shipped file is this command's output, each value printed to 6 significant digits:
+  // within one unit of its last digit.
   const auto unit = [](double v) {
     std::string s = std::to_string(v);
     s.erase(s.find_last_not_of('0') + 1);

@@ -1,6 +1,7 @@
 // import-opensim on a second person: the overground Rajagopal-family trial shipped in
 // data/opensim-rajagopal-walk/ (IK+RRA .sto with path column names, per-side plate prefixes,
 // knee_angle positive in flexion, a .trc whose header values are padded with empty fields).
+#include <algorithm>
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -174,8 +175,11 @@ TEST_CASE("second trial: geometry from the robot file, time window, plate span",
 
   ScratchDir robots("opensim_pelvis_frame");
   const std::string heavy = robots.fresh("robot") + ".yaml";
-  std::ofstream(heavy) << replacedOnce(readFile(rajagopalRobot()), "torso_mass: 38.7756", "torso_mass: 48.7756");
-  requireConfigError([](const std::string& p) { return loadRobot(p); }, heavy, "pelvis_frame.torso_mass", 37,
+  const std::string robot_text = readFile(rajagopalRobot());
+  std::ofstream(heavy) << replacedOnce(robot_text, "torso_mass: 38.7756", "torso_mass: 48.7756");
+  const int torso_line = 1 + static_cast<int>(std::count(
+                                 robot_text.begin(), robot_text.begin() + robot_text.find("torso_mass:"), '\n'));
+  requireConfigError([](const std::string& p) { return loadRobot(p); }, heavy, "pelvis_frame.torso_mass", torso_line,
                      "pelvis_mass + torso_mass = 62.114 kg must be the trunk mass m3 = 52.114 kg");
 
   OpenSimImportOptions window;
