@@ -5,7 +5,7 @@
 # to 5, 7, 9 and 11 points, the {7} one without the clearance) and of their zero-velocity
 # landing counterparts, one after the other. Deterministic: a re-run writes the same block.
 #
-#   scripts/impact_table.sh            regenerate the block (minutes: 16 optimisations, three of
+#   scripts/impact_table.sh            regenerate the block (minutes: 13 optimisations, four of
 #                                      them from 8 random starts)
 #   scripts/impact_table.sh --blocks   the block it writes (`PAGE KEY`)
 #
@@ -40,19 +40,7 @@ RUNS=(
   "default_impact_miossec|$IMPACT|$UNBOUNDED $THESIS_SET"
   "default_impact_miossec_rs8|$IMPACT|$UNBOUNDED $THESIS_SET --random-starts 8"
 )
-mkdir -p "$OUT"
-for entry in "${RUNS[@]}"; do
-  IFS='|' read -r name config flags <<<"$entry"
-  if [ "${REUSE:-0}" = 1 ] && [ -f "$OUT/$name/summary.json" ]; then continue; fi
-  rc=0
-  # shellcheck disable=SC2086
-  "$GAITOPT" optimize --config "$config" $flags --quiet --out "$OUT/$name" >"$OUT/$name.log" 2>&1 ||
-    rc=$?
-  if [ "$rc" -ne 0 ] && [ "$rc" -ne 3 ]; then
-    echo "impact_table: optimize $name exits $rc (log: $OUT/$name.log)" >&2
-    exit 1
-  fi
-done
+regenerator_optimize "$OUT" "${RUNS[@]}"
 
 /usr/bin/python3 - "$OUT" "$PAGE" <<'PY'
 import json, os, sys
