@@ -1,50 +1,131 @@
 #!/usr/bin/env bash
-# Table 3.1 of Miossec 2004 and the richer parameterisations, measured: runs `gaitopt optimize`
-# on each configuration given (default: the Table 3.1 set below), one after the other, and
-# prints a markdown table of status, criterion, wall time and the constraint groups active at
-# the result (max value within 1e-6 of its bound, in the group's unit) from summary.json.
+# Table 3.1 of Miossec 2004 and the richer parameterisations, measured: `gaitopt optimize` of the
+# Table 3.1 configurations (single start and the seeded global searches `--global 12 --seed 1`,
+# `--global 24 --seed 2` on Chessé's model), of the richer Chessé configurations and of the
+# 17-parameter SLSQP and Ipopt ones with the {3, 1} Ipopt refinement, one after the other (the
+# B-spline one also without the exchange method).
+# Writes the blocks `table` of docs/science/table-3.1.md and `ipopt`, `bases` of
+# docs/science/richer-parameterisation.md: status, C_Γ, iterations and the constraint groups
+# closest to their bound at each result (largest value within 10⁻³ of it), from summary.json.
 #
-#   scripts/table31.sh [config.yaml ...]
+#   scripts/table31.sh            regenerate the blocks (tens of minutes on a loaded 2-core
+#                                 machine: the Ipopt runs and the global searches)
+#   scripts/table31.sh --blocks   the blocks it writes (`PAGE KEY`)
 #
-# Outputs under results/table31/<config name>/ (summary.json, gait.yaml, ...) and
-# results/table31/table31.md. Environment: GAITOPT (default build/gaitopt).
-# Slow: minutes per configuration on a loaded 2-core machine (the Ipopt ones much longer).
-set -uo pipefail
+# Outputs under results/table31/<name>/ (GAITOPT_RESULTS instead of results/). Environment:
+# GAITOPT (default build/gaitopt), GAITOPT_DOCS_ROOT (the tree whose pages are written, default
+# the repository root), REUSE=1 (write the blocks from the runs already there, running only
+# those missing).
+set -euo pipefail
 
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-cd "$ROOT"
-GAITOPT="${GAITOPT:-build/gaitopt}"
-OUT=results/table31
-mkdir -p "$OUT"
-if [ $# -eq 0 ]; then
-  set -- configs/chesse_0.85_thesis.yaml configs/chevallereau_aoustin_0.75_thesis.yaml \
-         configs/chesse_0.85_ss3_ds1.yaml configs/chesse_0.85_ss5_ds2.yaml \
-         configs/chesse_0.85_bspline.yaml
-fi
-rows=()
-for config in "$@"; do
-  name="$(basename "$config" .yaml)"
-  "$GAITOPT" optimize --config "$config" --out "$OUT/$name" --quiet > "$OUT/$name.log" 2>&1
-  rc=$?
-  if [ ! -f "$OUT/$name/summary.json" ]; then
-    rows+=("| \`$name\` | exit $rc, no summary | | | |")
-    continue
-  fi
-  rows+=("$(/usr/bin/python3 - "$OUT/$name/summary.json" "$name" <<'PY'
-import json, sys
-s = json.load(open(sys.argv[1]))
-opt = s.get("optimization", s)
-solver = opt.get("solver", {})
-crit = s["criteria"]
-active = sorted({c["name"] for c in s["constraints"]
-                 if c.get("value") is not None and c["value"] > -1e-6})
-print(f"| `{sys.argv[2]}` | {solver.get('status')} | {crit['C_Gamma']:.1f} | {crit['W']:.2f} "
-      f"| {solver.get('wall_time_s', float('nan')):.1f} | {', '.join(active)} |")
+TABLE=docs/science/table-3.1.md
+RICH=docs/science/richer-parameterisation.md
+# shellcheck source=scripts/regenerator.sh
+. "$(dirname "${BASH_SOURCE[0]}")/regenerator.sh"
+regenerator_start "${1:-}" "$TABLE table" "$RICH ipopt" "$RICH bases"
+OUT="$RESULTS/table31"
+# name | configuration | optimize flags
+RUNS=(
+  "chesse_0.85_thesis|configs/chesse_0.85_thesis.yaml|"
+  "chesse_0.85_thesis_global12|configs/chesse_0.85_thesis.yaml|--global 12 --seed 1"
+  "chesse_0.85_thesis_global24|configs/chesse_0.85_thesis.yaml|--global 24 --seed 2"
+  "chevallereau_aoustin_0.75_thesis|configs/chevallereau_aoustin_0.75_thesis.yaml|"
+  "chesse_0.85_ss3_ds1|configs/chesse_0.85_ss3_ds1.yaml|"
+  "chesse_0.85_ss5_ds2|configs/chesse_0.85_ss5_ds2.yaml|"
+  "chesse_0.85_bspline|configs/chesse_0.85_bspline.yaml|"
+  "chesse_0.85_bspline_no_exchange|configs/chesse_0.85_bspline.yaml|--set solver.constraint_exchange=false"
+  "chesse_0.85|configs/chesse_0.85.yaml|"
+  "chesse_0.85_ipopt|configs/chesse_0.85_ipopt.yaml|"
+  "chesse_0.85_rich|configs/chesse_0.85_rich.yaml|"
+)
+regenerator_optimize "$OUT" "${RUNS[@]}"
+
+/usr/bin/python3 - "$OUT" "$TABLE" "$RICH" <<'PY'
+import json, os, sys
+
+sys.path.insert(0, "scripts")
+import docs_blocks  # noqa: E402
+
+out, table_page, rich_page = sys.argv[1:]
+names = [n for n in sorted(os.listdir(out)) if os.path.exists(os.path.join(out, n, "summary.json"))]
+s = {n: json.load(open(os.path.join(out, n, "summary.json"))) for n in names}
+c = {n: v["criteria"]["C_Gamma"] for n, v in s.items()}
+THESIS_CHESSE, THESIS_CA, THESIS_CA_W = 2349, 7615, 89.79  # thesis Table 3.1
+PONTRYAGIN = 1836  # Chessé's Pontryagin solution (thesis Table 3.1)
+
+
+def percent(a, b, digits=1):
+    return f"{100 * (a - b) / b:+.{digits}f} %".replace("-", "−")
+
+
+def active(n):
+    """The groups within 10⁻³ of their bound (their own unit), closest first, with their value."""
+    groups = sorted((g for g in s[n]["constraints"] if g.get("value") is not None
+                     and g["value"] > -1e-3), key=lambda g: -g["value"])
+    return ", ".join(f"`{g['name']}` {docs_blocks.number(g['value'], 2)} "
+                     f"{g['unit'].replace('^2', '²').replace(' ', '·')}".rstrip()
+                     for g in groups) or "none"
+
+
+def status(n):
+    text = s[n]["solver"]["status"]
+    g = s[n].get("global")
+    if g:
+        text += (f" ({g['converged']}/{g['count']} starts optimal, {len(g['clusters'])} "
+                 f"cluster{'s' if len(g['clusters']) != 1 else ''})")
+    if not s[n]["feasible"]:
+        text += f", unmet: {', '.join(s[n]['unmet_constraints'])}"
+    return text
+
+
+chesse = ["chesse_0.85_thesis", "chesse_0.85_thesis_global12", "chesse_0.85_thesis_global24"]
+labels = ["Chessé 0.85 m/s, C_Γ, the config (exchange method, from "
+          "`gait/chesse_0.85_thesis_start.yaml`)", "the same, `--global 12 --seed 1`",
+          "the same, `--global 24 --seed 2`"]
+ca = "chevallereau_aoustin_0.75_thesis"
+rows = ["Generated by `scripts/table31.sh` (`gaitopt optimize`; what binds: the constraint "
+        "groups whose largest value g is within 10⁻³ of the bound g ≤ 0 in their unit, with g):",
+        "",
+        "| comparison | thesis | gaitopt | status | what binds |", "|---|---|---|---|---|"]
+rows += [f"| {label} | {THESIS_CHESSE} | {c[n]:.2f} ({percent(c[n], THESIS_CHESSE)}) "
+         f"| {status(n)} | {active(n)} |" for label, n in zip(labels, chesse)]
+rows.append(f"| C&A 0.75 m/s, C_Γ | {THESIS_CA} (W {THESIS_CA_W}) | {c[ca]:.2f} "
+            f"(W {s[ca]['criteria']['W']:.2f}) | {status(ca)} | {active(ca)} |")
+best = min(chesse, key=lambda n: c[n])
+rows += ["", f"Held on the whole phase, the best 17-parameter optimum found on Chessé is "
+         f"{percent(c[best], THESIS_CHESSE)} against the thesis, C&A's "
+         f"{percent(c[ca], THESIS_CA, 0)}; the richer {{3, 1}} parameterisation gives "
+         f"{c['chesse_0.85_ss3_ds1']:.2f} ({percent(c['chesse_0.85_ss3_ds1'], THESIS_CHESSE)})."]
+docs_blocks.write("scripts/table31.sh", table_page, "table", "\n".join(rows) + "\n")
+
+
+def run(n, bold=False):
+    so = s[n]["solver"]
+    verdict = ("every constraint met" if s[n]["feasible"] else
+               f"unmet: {', '.join(s[n]['unmet_constraints'])}, largest violation "
+               f"{docs_blocks.number(s[n]['max_violation'], 2)}")
+    value = f"**{c[n]:.2f}**" if bold else f"{c[n]:.2f}"
+    return f"`{so['status']}` after {so['iterations']} iterations, C_Γ {value}, {verdict}"
+
+
+rich = "chesse_0.85_rich"
+ipopt = (f"Generated by `scripts/table31.sh`: 17 parameters, SLSQP (`configs/chesse_0.85.yaml`): "
+         f"{run('chesse_0.85')}; Ipopt (`configs/chesse_0.85_ipopt.yaml`): {run('chesse_0.85_ipopt')}; "
+         f"richer {{3, 1}}, 27 parameters, Ipopt from the shipped Ipopt point "
+         f"(`configs/chesse_0.85_rich.yaml`): {run(rich, bold=True)}: "
+         f"{percent(c[rich], THESIS_CHESSE, 0)} against the thesis, "
+         f"{percent(c[rich], PONTRYAGIN, 0)} against Chessé's Pontryagin value.")
+docs_blocks.write("scripts/table31.sh", rich_page, "ipopt", ipopt + "\n")
+
+bases = [("chesse_0.85_ss3_ds1", "{3, 1} polynomial"), ("chesse_0.85_ss5_ds2", "{5, 2} polynomial"),
+         ("chesse_0.85_bspline", "{7, 3} B-spline, exchange method")]
+rows = ["Generated by `scripts/table31.sh`:", "",
+        "| config | parameters | status | C_Γ [N²·m·s] | against the thesis' 2349 | against Chessé's 1836 |",
+        "|---|---|---|---|---|---|"]
+rows += [f"| `{n}.yaml` | {what}, {len(s[n]['parameters'])} | {status(n)} | {c[n]:.2f} "
+         f"| {percent(c[n], THESIS_CHESSE)} | {percent(c[n], PONTRYAGIN)} |" for n, what in bases]
+rows += ["", f"Without the exchange method (`--set solver.constraint_exchange=false`) the B-spline "
+         f"run ends {run('chesse_0.85_bspline_no_exchange')}."]
+docs_blocks.write("scripts/table31.sh", rich_page, "bases", "\n".join(rows) + "\n")
+print(f"table31: blocks written to {table_page}, {rich_page}")
 PY
-)")
-done
-{
-  echo "| config | status | C_Gamma [N²·m·s] | W [J/m] | wall time [s] | active constraint groups |"
-  echo "|---|---|---|---|---|---|"
-  printf '%s\n' "${rows[@]}"
-} | tee "$OUT/table31.md"
