@@ -296,7 +296,8 @@ struct Standing {
 // The run's result: its last point, or, when that breaks the verdict, the best point it met
 // (a feasible last point is kept as it is: the polish may cost up to 1e-6 more to hold g ≤ 0).
 // The evaluator the solver calls. W and C_E on their finer SS grid (GaitOptions::
-// criteria_refinement) cost 35 % of an evaluation of the default optimum; a C_Γ objective reads
+// criteria_refinement) add a fifth to a quarter to an evaluation (docs/science/gait-evaluation.md,
+// measured by scripts/refinement_cost.sh); a C_Γ objective reads
 // neither, and its values and constraints are the same numbers on the SS grid alone. The
 // result is evaluated by the caller's evaluator (setResult).
 GaitEvaluator solvingEvaluator(const GaitEvaluator& ev, Criterion c) {
