@@ -148,7 +148,7 @@ TEST_CASE("diagnose uses the centres of pressure; a compliant ground is not expl
   }
 }
 
-TEST_CASE("the held-out gain has an interval from every step left out; no cause when it includes zero",
+TEST_CASE("the held-out gain has an interval from every step left out: no cause when it includes zero",
           "[ident][diagnose][interval]") {
   SECTION("a clear cause: the interval excludes zero and holds the gain") {
     const MeasuredData d = synth({{EffectKind::Coulomb, 3, 3.0}}, {}, 2, 12);
