@@ -178,10 +178,13 @@ TEST_CASE("Chesse robot file: Table 1.1 bodies, 20 kg trunk, no rotor, friction 
 TEST_CASE("human five-link file: no motors and no friction sections mean none",
           "[robot_yaml]") {
   const RobotParams r = loadRobot(robotFile("human_subject01.yaml"));
-  CHECK(r.mass == std::array<double, 5>{5.094, 8.984, 44.443, 8.984, 5.094});
-  CHECK(r.mass[0] + r.mass[1] + r.mass[2] + r.mass[3] + r.mass[4] == Approx(72.599));
-  CHECK(r.l1 == 0.4251);
-  CHECK(r.l2 == 0.396);
+  // lump-osim's output of the scaled model: symmetric legs, the model's 72.6 kg (the trial's
+  // README), the trunk CoM 0.3869 m above and 0.0470 m behind the hips.
+  CHECK(r.mass[0] == r.mass[4]);
+  CHECK(r.mass[1] == r.mass[3]);
+  CHECK(r.mass[0] + r.mass[1] + r.mass[2] + r.mass[3] + r.mass[4] == Approx(72.6).margin(1e-4));
+  CHECK(r.l1 == r.l5);
+  CHECK(r.l2 == r.l4);
   CHECK(r.s[2] == Approx(std::hypot(0.3869, 0.0470)).margin(1e-4));
   CHECK(r.rotor_inertia == std::array<double, 4>{});
   CHECK(r.coulomb == std::array<double, 4>{});
