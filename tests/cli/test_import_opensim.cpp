@@ -11,7 +11,7 @@
 using namespace gaitopt::test;
 using Catch::Matchers::Contains;
 
-TEST_CASE("import-opensim CLI: CSV at the GRF rate; bad input exits 2 writing nothing",
+TEST_CASE("import-opensim CLI: CSV at the GRF rate, bad input exits 2 writing nothing",
           "[opensim_import]") {
   ScratchDir dir("import_opensim");
   const std::string out = dir.fresh("data") + ".csv";

@@ -80,7 +80,7 @@ TEST_CASE("synth: a compliant ground adds the sinking foot's inertia to the stan
   CHECK_THROWS_WITH(parseUnmodelledSpec("ground_compliance=-1"), Contains("must be > 0"));
 }
 
-TEST_CASE("synth: centres of pressure of point and rocker feet; their radius", "[ident][synth][cop]") {
+TEST_CASE("synth: centres of pressure of point and rocker feet and their radius", "[ident][synth][cop]") {
   SECTION("point foot: leg 1's centre of pressure stands still through each step") {
     const MeasuredData d = synth({}, {}, 3, 4, false);
     REQUIRE(d.has_cop);
@@ -122,7 +122,7 @@ TEST_CASE("measured-data CSV: the centres of pressure round-trip and need the re
   CHECK_THROWS_WITH(readMeasuredCsv(bad), Contains("column 'cop1x'") && Contains("need the reaction columns"));
 }
 
-TEST_CASE("diagnose uses the centres of pressure; a compliant ground is not explained",
+TEST_CASE("diagnose uses the centres of pressure, a compliant ground is not explained",
           "[ident][diagnose][cop]") {
   SECTION("rocker: the fitted radius agrees with the centres of pressure") {
     const MeasuredData d = synth({{EffectKind::RockerFoot, kNoJoint, 0.05}}, {}, 5, 12);

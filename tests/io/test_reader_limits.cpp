@@ -95,7 +95,7 @@ TEST_CASE("bad input: readers take regular files only", "[reliability]") {
                     Contains(big + ": file larger than 1 KiB (limit)"));
 }
 
-TEST_CASE("bad input: table cells are decimal numbers; a byte order mark is accepted",
+TEST_CASE("bad input: table cells are decimal numbers, a byte order mark is accepted",
           "[reliability]") {
   using gaitopt::decimalProblem;
   CHECK(gaitopt::parseDecimal("-1.5e-3") == -1.5e-3);

@@ -91,7 +91,7 @@ TEST_CASE("Impact touchdown equals the impact solver's post-impact state", "[sim
   }
 }
 
-TEST_CASE("Impact-landing gait: the closed loop converges to its cycle; energy balance",
+TEST_CASE("Impact-landing gait: the closed loop converges to its cycle with its energy balance",
           "[sim][impact]") {
   const ImpactGait f;
   const GaitMotion<double>& mo = f.evaluation.motion;

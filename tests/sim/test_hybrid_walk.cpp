@@ -13,7 +13,7 @@ namespace gaitopt::test {
 // The default gait was optimised without Coulomb friction (dry_friction: false); with the robot
 // file's whole friction its SS start needs 16 N·m more than the envelope on the stance hip, so
 // the reference is reproduced exactly only without the torque projection.
-TEST_CASE("Nominal closed loop reproduces the cycle; events and energy balance", "[sim]") {
+TEST_CASE("Nominal closed loop reproduces the cycle, its events and energy balance", "[sim]") {
   const DefaultGait f;
   WalkRequest req;
   req.steps = 3;
