@@ -8,6 +8,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "data_files.hpp"
 #include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/output_transaction.hpp"
 #include "gaitopt/io/opensim_analysis_file.hpp"
@@ -19,10 +20,13 @@
 namespace gaitopt::cli {
 namespace {
 
+// The five-link lumping of the shipped trial's person (lump-osim of its model).
+constexpr const char* kDefaultPerson = "configs/robot/human_subject01.yaml";
+
 struct ImportArgs {
   OpenSimImportFiles files;
   std::string id, out, result, window;
-  std::string robot = "configs/robot/human_subject01.yaml";
+  std::string robot;
   std::optional<double> belt_speed;
   double cutoff_hz = 6.0;
   std::string trunk = "markers";
@@ -60,8 +64,7 @@ void registerImportOpenSimCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--belt-speed", args->belt_speed,
                   "Treadmill belt speed [m/s] (default: estimated from the stance feet)")
       ->check(numberWithin(0.0, 10.0, true, "m/s"));
-  cmd->add_option("--robot", args->robot, "Five-link lumped robot file (lengths, masses)")
-      ->capture_default_str();
+  addRobotOption(cmd, args->robot, kDefaultPerson);
   cmd->add_option("--cutoff", args->cutoff_hz,
                   "Kinematics smoothing spline: frequency of gain 1/2 [Hz]")
       ->capture_default_str()
@@ -79,6 +82,7 @@ void registerImportOpenSimCommand(CLI::App& app, int& exit_code) {
   cmd->callback([args, &exit_code]() {
     if (args->out.empty() == args->result.empty())
       throw CLI::ValidationError("--out, --result", "give one: --out DATA.csv or --result DIR");
+    args->robot = robotOrDefault(args->robot, "import-opensim", kDefaultPerson);
     const RobotParams robot = loadRobot(args->robot);
     OpenSimImportOptions options;
     if (!args->window.empty()) options.time_window = parseWindow(args->window);

@@ -41,16 +41,17 @@ std::vector<std::string> plotFigureNames() {
   return names;
 }
 
-void addRobotOption(CLI::App* cmd, std::string& target) {
+void addRobotOption(CLI::App* cmd, std::string& target, const char* default_robot) {
   cmd->add_option("--robot", target,
-                  std::string("Robot description YAML file (default: ") + kDefaultRobot +
+                  std::string("Robot description YAML file (default: ") + default_robot +
                       " of gaitopt's data, " + dataDirectory().string() + ")")
       ->check(CLI::ExistingFile);
 }
 
-std::string robotOrDefault(const std::string& given, const char* command) {
+std::string robotOrDefault(const std::string& given, const char* command,
+                           const char* default_robot) {
   if (!given.empty()) return given;
-  const std::string path = (dataDirectory() / kDefaultRobot).string();
+  const std::string path = (dataDirectory() / default_robot).string();
   std::cerr << "gaitopt " << command << ": --robot not given: using " << path << "\n";
   return path;
 }

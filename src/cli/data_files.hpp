@@ -24,11 +24,13 @@ std::vector<std::string> kinds(const std::filesystem::path& dir);
 // The figures `gaitopt plot` writes into a run folder by default: KIND.png of each known kind.
 std::vector<std::string> plotFigureNames();
 
-// `--robot FILE`: empty `target` when not given (robotOrDefault then names the default).
-void addRobotOption(CLI::App* cmd, std::string& target);
+// `--robot FILE`: empty `target` when not given (robotOrDefault then names the default,
+// `default_robot` of the data directory).
+void addRobotOption(CLI::App* cmd, std::string& target, const char* default_robot = kDefaultRobot);
 
-// The robot file given, or the default robot of the data directory, printed on standard error
+// The robot file given, or `default_robot` of the data directory, printed on standard error
 // as "gaitopt COMMAND: --robot not given: using PATH".
-std::string robotOrDefault(const std::string& given, const char* command);
+std::string robotOrDefault(const std::string& given, const char* command,
+                           const char* default_robot = kDefaultRobot);
 
 }  // namespace gaitopt::cli
