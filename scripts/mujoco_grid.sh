@@ -25,7 +25,7 @@ shipped_gaits=(
   configs/gait/optimal_0.3.yaml
   configs/gait/default_step.yaml
   configs/gait/optimal_0.8.yaml
-  configs/gait/chesse_0.85.yaml
+  configs/gait/chesse_0.85_impact.yaml
   configs/gait/chevallereau_aoustin_0.75.yaml
   configs/gait/chevallereau_aoustin_0.75_impact.yaml
   configs/gait/default_impact.yaml

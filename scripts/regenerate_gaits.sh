@@ -30,6 +30,7 @@ GAITS=(
   "default_impact|configs/default_impact.yaml|||The C_Gamma-minimising step of the default robot at 0.5 m/s landing with an impact at a downward foot speed of at least 0.5 m/s, then single support"
   "chesse_0.85_ipopt|configs/chesse_0.85_ipopt.yaml|||Chesse's model at 0.85 m/s, C_Gamma-minimising with the thesis' 17-parameter step, solved by Ipopt"
   "chesse_0.85|configs/chesse_0.85.yaml|||Chesse's model (rabbit_chesse.yaml) at 0.85 m/s, C_Gamma-minimising with the thesis' 17-parameter step (SLSQP)"
+  "chesse_0.85_impact|configs/chesse_0.85_impact.yaml|||Chesse's model at 0.85 m/s, C_Gamma-minimising with an impact landing at a downward foot speed of at least 0.37 m/s, then single support, {ss_points: 3}: the Chesse gait the walking controller walks"
   "chesse_0.85_rich|configs/chesse_0.85_rich.yaml|||Chesse's model at 0.85 m/s with the richer parameterisation {ss_points: 3, ds_points: 1} (27 parameters), from chesse_0.85_ipopt.yaml refined exactly"
   "chevallereau_aoustin_0.75|configs/chevallereau_aoustin_0.75.yaml||--random-starts 8|Chevallereau & Aoustin's robot model at 0.75 m/s, C_Gamma-minimising with the thesis' zero-velocity landing and double support (17 parameters)"
   "chevallereau_aoustin_0.75_impact|configs/chevallereau_aoustin_0.75_impact.yaml||--random-starts 8|Chevallereau & Aoustin's gait family on their robot model at 0.75 m/s: single support only, the swing foot landing with an impact, {ss_points: 3}"
