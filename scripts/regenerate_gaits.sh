@@ -25,7 +25,7 @@ mkdir -p "$OUT"
 # description (the header's first line; empty: measured only, no gait file written)
 GAITS=(
   "default_step|configs/default.yaml|||The C_Gamma-minimising walking step of the default robot at 0.5 m/s (the default optimum)"
-  "optimal_0.3|configs/default.yaml|0.3||The C_Gamma-minimising walking step of the default robot at 0.3 m/s"
+  "optimal_0.3|configs/default.yaml|0.3|--random-starts 8|The C_Gamma-minimising walking step of the default robot at 0.3 m/s"
   "optimal_0.8|configs/default.yaml|0.8||The C_Gamma-minimising walking step of the default robot at 0.8 m/s"
   "default_impact|configs/default_impact.yaml|||The C_Gamma-minimising step of the default robot at 0.5 m/s landing with an impact at a downward foot speed of at least 0.5 m/s, then single support"
   "chesse_0.85_ipopt|configs/chesse_0.85_ipopt.yaml|||Chesse's model at 0.85 m/s, C_Gamma-minimising with the thesis' 17-parameter step, solved by Ipopt"
@@ -61,7 +61,7 @@ for entry in "${GAITS[@]}"; do
     run_config="$OUT/$name.config.yaml"
     sed -e "s#^speed: .*#speed: $speed#" \
         -e "s#^robot: \([^ ]*\)#robot: $ROOT/$(dirname "$config")/\1#" "$config" > "$run_config"
-    made="gaitopt optimize --config CONFIG --out DIR   (CONFIG: $config with speed: $speed)"
+    made="gaitopt optimize --config CONFIG${flags:+ $flags} --out DIR   (CONFIG: $config with speed: $speed)"
   fi
   rc=0
   if [ "${REUSE:-0}" != 1 ] || [ ! -f "$OUT/$name/summary.json" ]; then

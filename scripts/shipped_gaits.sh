@@ -53,7 +53,8 @@ for gait in gaits:
     how = f"`{made.group(1)}`" + (f" `{made.group(2).strip()}`" if made.group(2) else "") if made else "—"
     override = re.search(r"\(CONFIG: (\S+) with speed: (\S+)\)", header)
     if override:
-        how = f"`{override.group(1)}` at {override.group(2)} m/s"
+        how = f"`{override.group(1)}` at {override.group(2)} m/s" + (
+            f" `{made.group(2).strip()}`" if made and made.group(2) else "")
     rows.append(f"| `gait/{os.path.basename(gait)}` | {how} "
                 f"| {result.group(1)}, {result.group(2)} it. | "
                 f"{c:.2f} | {verdict} |" if result else f"| `{gait}` | {how} | — | {c:.2f} | {verdict} |")
