@@ -87,7 +87,9 @@ void Walker::switchPhase(const WalkerState& s) {
     leg1_ = other(leg1_);
     ++steps_;
     phase_start_ = s.t;
-    const double scale = rateScale(s);
+    const double error = stepSpeedError(s);
+    const double scale = rateScale(error);
+    regulateLean(error);
     if (!double_support_) return;
     phase_ = WalkerPhase::DoubleSupport;
     rear_contact_ = s.t;
@@ -113,21 +115,62 @@ void Walker::switchPhase(const WalkerState& s) {
   }
 }
 
+// The walk starts in single support (initialState): the stance leg is the one whose α is
+// nearer the phase's start. The contact flags cannot tell on inclined ground: the swing foot,
+// behind the stance foot, may touch the higher ground downhill while the stance foot, at rest,
+// barely loads it.
+Stance Walker::startingLeg(const WalkerState& s) const {
+  const auto progress = [&](Stance leg) {
+    Vec5 q, qd;
+    pinnedStateOf(s, leg, q, qd);
+    return std::abs(phaseProgress(q(0)));
+  };
+  return progress(Stance::Left) <= progress(Stance::Right) ? Stance::Left : Stance::Right;
+}
+
 double Walker::stanceFootX(const WalkerState& s) const {
   Vec5 q, qd;
   pinnedStateOf(s, leg1_, q, qd);
   return s.hip(0) - chainPoint(model_.pinned.hip, chainState(model_, q, qd))(0);
 }
 
-double Walker::rateScale(const WalkerState& s) {
+double Walker::stepSpeedError(const WalkerState& s) {
   const double x = stanceFootX(s);
   const double speed = (x - stance_x_) / (s.t - stance_t_);
   stance_x_ = x;
   stance_t_ = s.t;
+  return speed / gait_.speed - 1.0;
+}
+
+double Walker::rateScale(double error) {
   const double m = options_.max_rate_correction;
-  speed_error_sum_ = std::clamp(speed_error_sum_ + speed / gait_.speed - 1.0,
-                                -m / options_.speed_gain, m / options_.speed_gain);
+  speed_error_sum_ = std::clamp(speed_error_sum_ + error, -m / options_.speed_gain,
+                                m / options_.speed_gain);
   return 1.0 - options_.speed_gain * speed_error_sum_;
+}
+
+// Single-support speed regulation: the trunk leans back (forward) after a step faster (slower)
+// than the gait's, PI on the step speed error: the centre of mass behind (ahead of) its planned
+// path over the stance foot decelerates (accelerates) the zero dynamics. Leg-1 δ2 is the
+// stance hip: pitch = α + δ1 − δ2 (1.13) with the inter-femur angle δ3 kept, so the swing leg's
+// absolute path is the planned one. With a double support the lean is the second stage: it
+// acts once the double support's rate correction is at its bound (a slope, a large push) and
+// until its own integral has returned to 0; a gait without one has only this regulation.
+void Walker::regulateLean(double error) {
+  const double m = options_.max_lean;
+  const bool rate_saturated = std::abs(speed_error_sum_) * options_.speed_gain >=
+                              options_.max_rate_correction * (1.0 - 1e-9);
+  const bool active = !double_support_ || rate_saturated || lean_integral_ != 0.0;
+  double lean = 0.0;
+  if (active) {
+    const double before = lean_integral_;
+    lean_integral_ = std::clamp(lean_integral_ + options_.lean_integral_gain * error, -m, m);
+    // The second stage stops where it started: the rate correction takes over again.
+    if (double_support_ && !rate_saturated && before * lean_integral_ <= 0.0) lean_integral_ = 0.0;
+    lean = std::clamp(options_.lean_gain * error + lean_integral_, -m, m);
+  }
+  options_.offset_at_start = options_.offset;
+  options_.offset(1) = -lean;
 }
 
 bool Walker::fallen(const WalkerState& s, const Vec5& q) const {
@@ -145,7 +188,7 @@ WalkerCommand Walker::torques(const WalkerState& s) {
   WalkerCommand c;
   if (!started_) {
     started_ = true;
-    leg1_ = s.contact[0] || !s.contact[1] ? Stance::Left : Stance::Right;
+    leg1_ = startingLeg(s);
     phase_start_ = last_contact_ = stance_t_ = s.t;
     stance_x_ = stanceFootX(s);
   }

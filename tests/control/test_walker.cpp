@@ -160,6 +160,94 @@ TEST_CASE("Walker torques stay within the envelope at the joints' speeds", "[con
   }
 }
 
+TEST_CASE("Walker starts on the leg whose alpha is at the SS start, whatever the contact flags",
+          "[control][walker]") {
+  // Downhill the swing foot behind touches the higher ground while the stance foot at rest
+  // barely loads its own: the first sample may say (0, 1).
+  const DefaultGait g;
+  Walker w = walkerOf(g);
+  WalkerState s = w.initialState();
+  s.contact = {false, true};
+  w.torques(s);
+  CHECK(w.leg1() == Stance::Left);
+  s.t = 0.001;
+  s.contact = {true, true};
+  w.torques(s);
+  CHECK(w.steps() == 0);
+  CHECK(w.phase() == WalkerPhase::SingleSupport);
+}
+
+namespace {
+
+// The leg-1 δ2 output of the walker's SS law (the stance hip) with the state on the gait's
+// constraints at progress s of the SS on the right leg, foot at x, after one step of the left
+// leg from x = 0 ending at t_touchdown.
+struct LeanRun {
+  double error_at_start, error_mid_blend, error_after_blend;
+};
+LeanRun leanAfterOneStep(const ShippedGait& g, WalkerOptions o, double speed_ratio) {
+  Walker w(g.model, g.evaluation, g.gait.options.parameterisation, o);
+  const GaitMotion<double>& mo = g.evaluation.motion;
+  w.torques(w.initialState());
+  Vec5 q, qd;
+  ssState(mo, mo.alpha_fSS, mo.alphadot_fSS, q, qd);
+  // The right foot's x from the left foot at 0: the hip seen from both feet.
+  const WalkerState left = measured(g.model, q, qd, Stance::Left, 0.0, {true, true}, 0.0);
+  Vec5 qr, qdr;
+  pinnedStateOf(left, Stance::Right, qr, qdr);
+  const double x_right =
+      left.hip(0) - chainPoint(g.model.pinned.hip, chainState(g.model, qr, qdr))(0);
+  const double t_touchdown = x_right / (speed_ratio * g.evaluation.speed);
+  w.torques(measured(g.model, q, qd, Stance::Left, 0.0, {true, true}, t_touchdown));
+  REQUIRE(w.steps() == 1);
+  const auto error_at = [&](double progress, double dt) {
+    ssState(mo, mo.q_iSS(0) + progress * (mo.alpha_fSS - mo.q_iSS(0)), mo.alphadot_iSS, q, qd);
+    // The rear (left) foot off the ground: the DS, if any, ends.
+    return w.torques(measured(g.model, q, qd, Stance::Right, x_right, {false, true},
+                              t_touchdown + dt))
+        .law.error(1);
+  };
+  LeanRun r;
+  r.error_at_start = error_at(0.0, 0.03);
+  r.error_mid_blend = error_at(0.5 * kOffsetBlend, 0.04);
+  r.error_after_blend = error_at(2.0 * kOffsetBlend, 0.05);
+  REQUIRE(w.phase() == WalkerPhase::SingleSupport);
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("Walker leans the trunk back after a fast step, blended in over the SS start",
+          "[control][walker]") {
+  const ShippedGait g("configs/gait/default_impact.yaml");
+  WalkerOptions o = walkerOptionsFor(g.gait.options, g.model);
+  o.lean_gain = 0.1;
+  o.lean_integral_gain = 0.05;
+  // A step at twice the gait's speed: relative error +1, lean 0.1 + 0.05 rad. The output
+  // δ2 − (δ_d2 − lean) of a state on the planned constraints is the lean (pitch = α + δ1 − δ2).
+  const LeanRun fast = leanAfterOneStep(g, o, 2.0);
+  CHECK(fast.error_at_start == Approx(0.0).margin(1e-12));
+  CHECK(fast.error_mid_blend == Approx(0.5 * 0.15).margin(1e-12));  // smoothstep(1/2) = 1/2
+  CHECK(fast.error_after_blend == Approx(0.15).margin(1e-12));
+  // Slower: leans forward; bounded by max_lean.
+  o.max_lean = 0.02;
+  CHECK(leanAfterOneStep(g, o, 0.5).error_after_blend == Approx(-0.02).margin(1e-12));
+  // No lean at the gait's speed.
+  CHECK(leanAfterOneStep(g, o, 1.0).error_after_blend == Approx(0.0).margin(1e-9));
+}
+
+TEST_CASE("Walker with a double support leans only once the DS rate correction is at its bound",
+          "[control][walker]") {
+  const DefaultGait g;
+  WalkerOptions o = walkerOptionsFor(g.gait.options, g.model);
+  o.lean_gain = 0.1;
+  o.lean_integral_gain = 0.05;
+  // +50 % within the rate correction's reach (0.2 × 0.5 < 0.3): the DS alone regulates.
+  CHECK(leanAfterOneStep(g, o, 1.5).error_after_blend == Approx(0.0).margin(1e-12));
+  // Beyond it (0.2 × 2 > 0.3): the lean acts, 0.1 × 2 + 0.05 × 2.
+  CHECK(leanAfterOneStep(g, o, 3.0).error_after_blend == Approx(0.3).margin(1e-9));
+}
+
 }  // namespace gaitopt::test
 
 namespace gaitopt::test {

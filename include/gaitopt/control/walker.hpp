@@ -44,6 +44,12 @@ struct WalkerOptions : ControllerOptions {
   // plant's rotor model, a slope, a heavier trunk).
   double speed_gain = 0.2;
   double max_rate_correction = 0.3;
+  // Single-support speed regulation (Walker::regulateLean): trunk lean [rad] = lean_gain × the
+  // last step's relative speed error + the sum of lean_integral_gain × the errors, within
+  // ±max_lean.
+  double lean_gain = 0.1;
+  double lean_integral_gain = 0.05;
+  double max_lean = 0.6;
 };
 
 // The controller options a gait asks for: its friction cones, normal-force margin and torque
@@ -104,7 +110,11 @@ class Walker {
   void switchPhase(const WalkerState& s);
   bool fallen(const WalkerState& s, const Vec5& q) const;
   double stanceFootX(const WalkerState& s) const;  // world x of leg 1's foot
-  double rateScale(const WalkerState& s);          // after a touchdown: the DS's rate scale
+  Stance startingLeg(const WalkerState& s) const;  // leg 1 at the first sample
+  double stepSpeedError(const WalkerState& s);  // at a touchdown: the last step's speed error
+  double rateScale(double error);               // after a touchdown: the DS's rate scale
+  void regulateLean(double error);              // after a touchdown: the SS trunk lean
+  double lean_integral_ = 0.0;
 };
 
 // Pinned coordinates q = (α, δ1..δ4) and rates of the measured state with `leg1` as leg 1
