@@ -52,6 +52,8 @@ gaitopt::WalkerOptions walkerOptions(const char* text, gaitopt::WalkerOptions o)
   non_negative("lean_gain", o.lean_gain);
   non_negative("lean_integral_gain", o.lean_integral_gain);
   positive("max_lean", o.max_lean);
+  non_negative("slope_compensation", o.slope_compensation);
+  non_negative("slope_deadband", o.slope_deadband);
   if (m.has("ds_control")) {
     const std::string c = m.string("ds_control");
     if (c != "cubic" && c != "time_optimal")

@@ -8,6 +8,7 @@
 #include "gaitopt/control/walker.hpp"
 #include "gaitopt/gait/constraints/torque_envelope.hpp"
 #include "gaitopt/model/chain_kinematics.hpp"
+#include "gaitopt/model/dynamics_pinned.hpp"
 #include "gaitopt/model/joint_friction.hpp"
 #include "test_default_gait.hpp"
 
@@ -185,12 +186,14 @@ namespace {
 struct LeanRun {
   double error_at_start, error_mid_blend, error_after_blend;
 };
-LeanRun leanAfterOneStep(const ShippedGait& g, WalkerOptions o, double speed_ratio) {
+LeanRun leanAfterOneStep(const ShippedGait& g, WalkerOptions o, double speed_ratio,
+                         double turn = 0.0) {
   Walker w(g.model, g.evaluation, g.gait.options.parameterisation, o);
   const GaitMotion<double>& mo = g.evaluation.motion;
   w.torques(w.initialState());
   Vec5 q, qd;
   ssState(mo, mo.alpha_fSS, mo.alphadot_fSS, q, qd);
+  q(0) += turn;  // the step's end turned about the stance foot: inclined ground
   // The right foot's x from the left foot at 0: the hip seen from both feet.
   const WalkerState left = measured(g.model, q, qd, Stance::Left, 0.0, {true, true}, 0.0);
   Vec5 qr, qdr;
@@ -246,6 +249,42 @@ TEST_CASE("Walker with a double support leans only once the DS rate correction i
   CHECK(leanAfterOneStep(g, o, 1.5).error_after_blend == Approx(0.0).margin(1e-12));
   // Beyond it (0.2 × 2 > 0.3): the lean acts, 0.1 × 2 + 0.05 × 2.
   CHECK(leanAfterOneStep(g, o, 3.0).error_after_blend == Approx(0.3).margin(1e-9));
+}
+
+TEST_CASE("Walker measures the slope between the feet and leans back downhill by its CoM shift",
+          "[control][walker]") {
+  const DefaultGait g;
+  const GaitMotion<double>& mo = g.evaluation.motion;
+  WalkerOptions o = walkerOptionsFor(g.gait.options, g.model);
+  Vec5 q_end, qd;
+  ssState(mo, mo.alpha_fSS, mo.alphadot_fSS, q_end, qd);
+  // The touchdown configuration turned by δ about foot 1 turns the feet's direction by ±δ.
+  const auto slope = [&](double turn) {
+    return groundSlopeBetweenFeet(g.model, Vec5(q_end + turn * Vec5::Unit(0)));
+  };
+  CHECK(std::abs(slope(0.0)) < 2e-3);  // the gait lands on level ground
+  const double per_turn = (slope(1e-3) - slope(-1e-3)) / 2e-3;
+  CHECK(std::abs(per_turn) == Approx(1.0).epsilon(1e-6));
+  const double gamma = -0.03;
+  const double turn = (gamma - slope(0.0)) / per_turn;
+  CHECK(slope(turn) == Approx(gamma).margin(1e-9));
+  // At the gait's speed only the slope compensation leans the trunk.
+  const double lean = leanAfterOneStep(g, o, 1.0, turn).error_after_blend;
+  CHECK(lean > 0.1);  // back, downhill
+  // Independent of the walker's formula: the lean moves the centre of mass at mid single
+  // support back by as much as turning the configuration by the slope moves it forward.
+  Vec5 q_mid;
+  ssState(mo, 0.5 * (mo.q_iSS(0) + mo.alpha_fSS), mo.alphadot_iSS, q_mid, qd);
+  const auto com_x = [&](const Vec5& q) { return pinnedTerms(g.model, q, Vec5(Vec5::Zero())).com(0); };
+  const double forward = com_x(Vec5(q_mid + (gamma / per_turn) * Vec5::Unit(0))) - com_x(q_mid);
+  const double back = com_x(Vec5(q_mid - lean * Vec5::Unit(2))) - com_x(q_mid);
+  CHECK(std::abs(forward) > 0.01);
+  CHECK(back == Approx(-forward).epsilon(0.1));
+  // Within the dead band: level ground, no lean.
+  const double small = (0.5 * o.slope_deadband - slope(0.0)) / per_turn;
+  CHECK(leanAfterOneStep(g, o, 1.0, small).error_after_blend == Approx(0.0).margin(1e-9));
+  o.slope_compensation = 0.0;
+  CHECK(leanAfterOneStep(g, o, 1.0, turn).error_after_blend == Approx(0.0).margin(1e-9));
 }
 
 }  // namespace gaitopt::test
