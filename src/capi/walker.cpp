@@ -41,8 +41,19 @@ gaitopt::WalkerOptions walkerOptions(const char* text, gaitopt::WalkerOptions o)
       value = *v;
     }
   };
+  const auto non_negative = [&](const std::string& key, double& value) {
+    if (const std::optional<double> v = m.optionalNumber(key)) {
+      if (!(*v >= 0.0)) throw m.error(key, "must be >= 0, got " + m.text(key));
+      value = *v;
+    }
+  };
   positive("gain_scale", o.gain_scale);
   positive("bandwidth", o.bandwidth);
+  non_negative("lean_gain", o.lean_gain);
+  non_negative("lean_integral_gain", o.lean_integral_gain);
+  positive("max_lean", o.max_lean);
+  non_negative("slope_compensation", o.slope_compensation);
+  non_negative("slope_deadband", o.slope_deadband);
   if (m.has("ds_control")) {
     const std::string c = m.string("ds_control");
     if (c != "cubic" && c != "time_optimal")

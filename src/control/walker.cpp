@@ -6,6 +6,7 @@
 
 #include "gaitopt/gait/constraints/torque_envelope.hpp"
 #include "gaitopt/model/chain_kinematics.hpp"
+#include "gaitopt/model/dynamics_pinned.hpp"
 #include "gaitopt/model/joint_friction.hpp"
 
 namespace gaitopt {
@@ -17,6 +18,23 @@ Stance other(Stance s) { return s == Stance::Left ? Stance::Right : Stance::Left
 // A phase past this fraction of its α range: a contact of the swing foot is its touchdown
 // (before, the foot just lifted off may still touch the ground).
 constexpr double kTouchdownArmed = 0.5;
+
+// The trunk lean [rad] per radian of ground slope that keeps the centre of mass's horizontal
+// offset from the stance foot, and so the gravity torque that drives the zero dynamics, at its
+// planned value: the slope turns the step's geometry by γ about the stance foot, which moves the
+// centre of mass forward by z_c γ downhill; the lean moves it by ∂x_c/∂pitch per radian
+// (pitch = α + δ1 − δ2: ∂/∂pitch = −∂/∂δ2 with α, δ1, δ3, δ4 kept). Evaluated on the
+// controller's model at the gait's mid single support.
+double slopeLeanRatio(const Model& model, const GaitMotion<double>& mo) {
+  Vec5 q;
+  q(0) = 0.5 * (mo.q_iSS(0) + mo.alpha_fSS);
+  for (int j = 0; j < 4; ++j) q(j + 1) = mo.ss_path[j](q(0)).value;
+  const Vec5 zero = Vec5::Zero();
+  constexpr double h = 1e-6;
+  const Vec2 com = pinnedTerms(model, q, zero).com;
+  const double x_back = pinnedTerms(model, Vec5(q + h * Vec5::Unit(2)), zero).com(0);
+  return -com(1) / ((com(0) - x_back) / h);  // lean = ratio × (−γ): back downhill
+}
 
 }  // namespace
 
@@ -39,7 +57,11 @@ WalkerOptions walkerOptionsFor(const GaitOptions& g, const Model& m) {
   o.min_normal_force =
       std::max(g.min_normal_force, kWalkerNormalForceFraction * m.total_mass * m.gravity);
   o.full_torque_envelope = g.full_torque_envelope;
-  o.hold_references_past_fss = !g.parameterisation.landsWithImpact();
+  // Held for every landing: a late touchdown (lower ground) past α_fSS then meets the ground by
+  // the robot turning as one body about the stance foot, where the extrapolated polynomials of
+  // an impact landing go on spreading the legs, and the longer step's impact stalls the next
+  // one (measured in MuJoCo on the 0.75 m/s impact gait, 0.035 rad downhill).
+  o.hold_references_past_fss = true;
   return o;
 }
 
@@ -50,6 +72,7 @@ Walker::Walker(Model model, GaitEvaluation<double> gait, const Parameterisation&
       double_support_(par.hasDoubleSupport()),
       options_(options) {
   if (!gait_.motion_computed) throw std::invalid_argument("the gait has no motion");
+  slope_lean_ratio_ = slopeLeanRatio(model_, gait_.motion);
 }
 
 WalkerState Walker::initialState() const {
@@ -83,11 +106,17 @@ void Walker::switchPhase(const WalkerState& s) {
   pinnedStateOf(s, leg1_, q, qd);
   const GaitMotion<double>& mo = gait_.motion;
   if (phase_ == WalkerPhase::SingleSupport) {
-    if (!s.contact[side(other(leg1_))] || phaseProgress(q(0)) < kTouchdownArmed) return;
+    if (!s.contact[side(other(leg1_))]) return;
+    if (phaseProgress(q(0)) < kTouchdownArmed) {
+      return;
+    }
+    slope_ = groundSlopeBetweenFeet(model_, q);
     leg1_ = other(leg1_);
     ++steps_;
     phase_start_ = s.t;
-    const double scale = rateScale(s);
+    const double error = stepSpeedError(s);
+    const double scale = rateScale(error);
+    regulateLean(error);
     if (!double_support_) return;
     phase_ = WalkerPhase::DoubleSupport;
     rear_contact_ = s.t;
@@ -113,21 +142,77 @@ void Walker::switchPhase(const WalkerState& s) {
   }
 }
 
+// The walk starts in single support (initialState): the stance leg is the one whose α is
+// nearer the phase's start. The contact flags cannot tell on inclined ground: the swing foot,
+// behind the stance foot, may touch the higher ground downhill while the stance foot, at rest,
+// barely loads it.
+Stance Walker::startingLeg(const WalkerState& s) const {
+  const auto progress = [&](Stance leg) {
+    Vec5 q, qd;
+    pinnedStateOf(s, leg, q, qd);
+    return std::abs(phaseProgress(q(0)));
+  };
+  return progress(Stance::Left) <= progress(Stance::Right) ? Stance::Left : Stance::Right;
+}
+
+double groundSlopeBetweenFeet(const Model& model, const Vec5& q) {
+  const Vec2 d = chainPoint(model.pinned.foot2, chainState(model, q, Vec5(Vec5::Zero())));
+  return std::atan2(d(1), d(0));
+}
+
+// The lean that compensates the slope measured at the last touchdown (slopeLeanRatio), 0 within
+// ±slope_deadband (the touchdown's measurement on level ground).
+double Walker::slopeLean() const {
+  if (std::abs(slope_) <= options_.slope_deadband) return 0.0;
+  return -options_.slope_compensation * slope_lean_ratio_ * slope_;
+}
+
 double Walker::stanceFootX(const WalkerState& s) const {
   Vec5 q, qd;
   pinnedStateOf(s, leg1_, q, qd);
   return s.hip(0) - chainPoint(model_.pinned.hip, chainState(model_, q, qd))(0);
 }
 
-double Walker::rateScale(const WalkerState& s) {
+double Walker::stepSpeedError(const WalkerState& s) {
   const double x = stanceFootX(s);
   const double speed = (x - stance_x_) / (s.t - stance_t_);
   stance_x_ = x;
   stance_t_ = s.t;
+  return speed / gait_.speed - 1.0;
+}
+
+double Walker::rateScale(double error) {
   const double m = options_.max_rate_correction;
-  speed_error_sum_ = std::clamp(speed_error_sum_ + speed / gait_.speed - 1.0,
-                                -m / options_.speed_gain, m / options_.speed_gain);
+  speed_error_sum_ = std::clamp(speed_error_sum_ + error, -m / options_.speed_gain,
+                                m / options_.speed_gain);
   return 1.0 - options_.speed_gain * speed_error_sum_;
+}
+
+// Single-support speed regulation: the trunk leans back (forward) after a step faster (slower)
+// than the gait's, PI on the step speed error: the centre of mass behind (ahead of) its planned
+// path over the stance foot decelerates (accelerates) the zero dynamics. Leg-1 δ2 is the
+// stance hip: pitch = α + δ1 − δ2 (1.13) with the inter-femur angle δ3 kept, so the swing leg's
+// absolute path is the planned one. With a double support the lean is the second stage: it
+// acts once the double support's rate correction is at its bound (a slope, a large push) and
+// until its own integral has returned to 0; a gait without one has only this regulation. The
+// slope compensation (slopeLean) is added as a feedforward: the integral then removes what the
+// model leaves.
+void Walker::regulateLean(double error) {
+  const double m = options_.max_lean;
+  const bool rate_saturated = std::abs(speed_error_sum_) * options_.speed_gain >=
+                              options_.max_rate_correction * (1.0 - 1e-9);
+  const bool active = !double_support_ || rate_saturated || lean_integral_ != 0.0;
+  double lean = 0.0;
+  if (active) {
+    const double before = lean_integral_;
+    lean_integral_ = std::clamp(lean_integral_ + options_.lean_integral_gain * error, -m, m);
+    // The second stage stops where it started: the rate correction takes over again.
+    if (double_support_ && !rate_saturated && before * lean_integral_ <= 0.0) lean_integral_ = 0.0;
+    lean = std::clamp(options_.lean_gain * error + lean_integral_, -m, m);
+  }
+  lean = std::clamp(lean + slopeLean(), -m, m);
+  options_.offset_at_start = options_.offset;
+  options_.offset(1) = -lean;
 }
 
 bool Walker::fallen(const WalkerState& s, const Vec5& q) const {
@@ -145,7 +230,7 @@ WalkerCommand Walker::torques(const WalkerState& s) {
   WalkerCommand c;
   if (!started_) {
     started_ = true;
-    leg1_ = s.contact[0] || !s.contact[1] ? Stance::Left : Stance::Right;
+    leg1_ = startingLeg(s);
     phase_start_ = last_contact_ = stance_t_ = s.t;
     stance_x_ = stanceFootX(s);
   }

@@ -88,7 +88,7 @@ constexpr double kHoldLength = 0.02;
 // δ_d,j(α) and its α-derivatives. Past α_fSS with hold_references_past_fss the reference is held
 // C¹: δ_d(α_f) + δ_d'(α_f) σ τ (1 − e^{−d/τ}), d = σ (α − α_f) ≥ 0 the distance past α_fSS
 // along the step's direction σ, τ = kHoldLength.
-PolyValue<double> ssReference(const WalkingController& s, int j, double alpha) {
+PolyValue<double> plannedSsReference(const WalkingController& s, int j, double alpha) {
   const GaitMotion<double>& mo = s.motion;
   const double sigma = mo.alpha_fSS > mo.q_iSS(0) ? 1.0 : -1.0;
   const double d = sigma * (alpha - mo.alpha_fSS);
@@ -97,6 +97,25 @@ PolyValue<double> ssReference(const WalkingController& s, int j, double alpha) {
   const double decay = std::exp(-d / kHoldLength);
   return {f.value + f.first * sigma * kHoldLength * (1.0 - decay), f.first * decay,
           -f.first * decay * sigma / kHoldLength};
+}
+
+// ControllerOptions::offset blended in from offset_at_start by a C¹ smoothstep of s.
+PolyValue<double> referenceOffset(const WalkingController& s, int j, double alpha) {
+  const GaitMotion<double>& mo = s.motion;
+  const double a = s.options.offset_at_start(j), b = s.options.offset(j);
+  if (a == b) return {b, 0.0, 0.0};
+  const double ds = 1.0 / (kOffsetBlend * (mo.alpha_fSS - mo.q_iSS(0)));  // du/dα
+  const double u = (alpha - mo.q_iSS(0)) * ds;
+  if (u <= 0.0) return {a, 0.0, 0.0};
+  if (u >= 1.0) return {b, 0.0, 0.0};
+  const double h = b - a;
+  return {a + h * u * u * (3.0 - 2.0 * u), h * 6.0 * u * (1.0 - u) * ds,
+          h * (6.0 - 12.0 * u) * ds * ds};
+}
+
+PolyValue<double> ssReference(const WalkingController& s, int j, double alpha) {
+  const PolyValue<double> r = plannedSsReference(s, j, alpha), o = referenceOffset(s, j, alpha);
+  return {r.value + o.value, r.first + o.first, r.second + o.second};
 }
 
 // SS input–output linearisation: Γ with B A⁻¹ D_Γ Γ = ÿ* + δ_d'' α̇² + B A⁻¹ (C + G), where
@@ -158,7 +177,8 @@ DsInputs cubicDsInputs(const WalkingController& s, const DsReference& ds, double
   const GaitMotion<double>& mo = s.motion;
   const PolyValue<double> a = ds.alpha(t);
   const PolyValue<double> d1 = mo.ds_delta1(a.value), d2 = mo.ds_delta2(a.value);
-  const Eigen::Vector3d p(a.value, d1.value, d2.value);
+  const Eigen::Vector3d p(a.value, d1.value + s.options.offset_at_start(0),
+                          d2.value + s.options.offset_at_start(1));
   const Eigen::Vector3d pd(a.first, d1.first * a.first, d2.first * a.first);
   const Eigen::Vector3d pdd(a.second, d1.second * a.first * a.first + d1.first * a.second,
                             d2.second * a.first * a.first + d2.first * a.second);
@@ -179,7 +199,8 @@ DsInputs timeOptimalDsInputs(const WalkingController& s, const DsReference& ds, 
   CyclicDsPoint c = cyclicDsAlpha(mo, q(0));
   c.alphad *= ds.rate_scale;  // the curve scaled: α̈_c = slope α̇ still holds on it
   const PolyValue<double> d1 = mo.ds_delta1(q(0)), d2 = mo.ds_delta2(q(0));
-  const Eigen::Vector2d y(q(1) - d1.value, q(2) - d2.value);
+  const Eigen::Vector2d y(q(1) - d1.value - s.options.offset_at_start(0),
+                          q(2) - d2.value - s.options.offset_at_start(1));
   const Eigen::Vector2d yd(qd(1) - d1.first * qd(0), qd(2) - d2.first * qd(0));
   error << c.alphad - qd(0), y, 0.0;
   const PdGains k = pdGains(s.options);

@@ -80,6 +80,17 @@ TEST_CASE("C walker reports NULL arguments and bad input with the file or key",
   const std::string path = exportedJson(g);
   CHECK(loadError(path, "gain_scale: 2\nbandwith: 30").find("bandwith") != std::string::npos);
   CHECK(loadError(path, "gain_scale: -1").find("gain_scale") != std::string::npos);
+  CHECK(loadError(path, "lean_gain: -0.1").find("lean_gain") != std::string::npos);
+  CHECK(loadError(path, "max_lean: 0").find("max_lean") != std::string::npos);
+  CHECK(loadError(path, "slope_compensation: -1").find("slope_compensation") !=
+        std::string::npos);
+  gaitopt_walker* w = gaitopt_walker_load(
+      path.c_str(),
+      "lean_gain: 0\nlean_integral_gain: 0\nslope_compensation: 0\nslope_deadband: 0.01\n"
+      "max_lean: 0.2",
+      nullptr, 0);
+  CHECK(w != nullptr);
+  gaitopt_walker_free(w);
   CHECK(loadError(path, "ds_control: fast").find("expected cubic or time_optimal") !=
         std::string::npos);
   CHECK(loadError(path + ".missing", nullptr).find(path + ".missing") != std::string::npos);

@@ -8,6 +8,7 @@
 #include "gaitopt/control/walker.hpp"
 #include "gaitopt/gait/constraints/torque_envelope.hpp"
 #include "gaitopt/model/chain_kinematics.hpp"
+#include "gaitopt/model/dynamics_pinned.hpp"
 #include "gaitopt/model/joint_friction.hpp"
 #include "test_default_gait.hpp"
 
@@ -158,6 +159,132 @@ TEST_CASE("Walker torques stay within the envelope at the joints' speeds", "[con
     const Vec4 limit = jointTorqueLimits(g.model.robot.envelope, jointSpeeds(qd), true);
     CHECK((c.tau.cwiseAbs() - limit).maxCoeff() <= 1e-9);
   }
+}
+
+TEST_CASE("Walker starts on the leg whose alpha is at the SS start, whatever the contact flags",
+          "[control][walker]") {
+  // Downhill the swing foot behind touches the higher ground while the stance foot at rest
+  // barely loads its own: the first sample may say (0, 1).
+  const DefaultGait g;
+  Walker w = walkerOf(g);
+  WalkerState s = w.initialState();
+  s.contact = {false, true};
+  w.torques(s);
+  CHECK(w.leg1() == Stance::Left);
+  s.t = 0.001;
+  s.contact = {true, true};
+  w.torques(s);
+  CHECK(w.steps() == 0);
+  CHECK(w.phase() == WalkerPhase::SingleSupport);
+}
+
+namespace {
+
+// The leg-1 δ2 output of the walker's SS law (the stance hip) with the state on the gait's
+// constraints at progress s of the SS on the right leg, foot at x, after one step of the left
+// leg from x = 0 ending at t_touchdown.
+struct LeanRun {
+  double error_at_start, error_mid_blend, error_after_blend;
+};
+LeanRun leanAfterOneStep(const ShippedGait& g, WalkerOptions o, double speed_ratio,
+                         double turn = 0.0) {
+  Walker w(g.model, g.evaluation, g.gait.options.parameterisation, o);
+  const GaitMotion<double>& mo = g.evaluation.motion;
+  w.torques(w.initialState());
+  Vec5 q, qd;
+  ssState(mo, mo.alpha_fSS, mo.alphadot_fSS, q, qd);
+  q(0) += turn;  // the step's end turned about the stance foot: inclined ground
+  // The right foot's x from the left foot at 0: the hip seen from both feet.
+  const WalkerState left = measured(g.model, q, qd, Stance::Left, 0.0, {true, true}, 0.0);
+  Vec5 qr, qdr;
+  pinnedStateOf(left, Stance::Right, qr, qdr);
+  const double x_right =
+      left.hip(0) - chainPoint(g.model.pinned.hip, chainState(g.model, qr, qdr))(0);
+  const double t_touchdown = x_right / (speed_ratio * g.evaluation.speed);
+  w.torques(measured(g.model, q, qd, Stance::Left, 0.0, {true, true}, t_touchdown));
+  REQUIRE(w.steps() == 1);
+  const auto error_at = [&](double progress, double dt) {
+    ssState(mo, mo.q_iSS(0) + progress * (mo.alpha_fSS - mo.q_iSS(0)), mo.alphadot_iSS, q, qd);
+    // The rear (left) foot off the ground: the DS, if any, ends.
+    return w.torques(measured(g.model, q, qd, Stance::Right, x_right, {false, true},
+                              t_touchdown + dt))
+        .law.error(1);
+  };
+  LeanRun r;
+  r.error_at_start = error_at(0.0, 0.03);
+  r.error_mid_blend = error_at(0.5 * kOffsetBlend, 0.04);
+  r.error_after_blend = error_at(2.0 * kOffsetBlend, 0.05);
+  REQUIRE(w.phase() == WalkerPhase::SingleSupport);
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("Walker leans the trunk back after a fast step, blended in over the SS start",
+          "[control][walker]") {
+  const ShippedGait g("configs/gait/default_impact.yaml");
+  WalkerOptions o = walkerOptionsFor(g.gait.options, g.model);
+  o.lean_gain = 0.1;
+  o.lean_integral_gain = 0.05;
+  // A step at twice the gait's speed: relative error +1, lean 0.1 + 0.05 rad. The output
+  // δ2 − (δ_d2 − lean) of a state on the planned constraints is the lean (pitch = α + δ1 − δ2).
+  const LeanRun fast = leanAfterOneStep(g, o, 2.0);
+  CHECK(fast.error_at_start == Approx(0.0).margin(1e-12));
+  CHECK(fast.error_mid_blend == Approx(0.5 * 0.15).margin(1e-12));  // smoothstep(1/2) = 1/2
+  CHECK(fast.error_after_blend == Approx(0.15).margin(1e-12));
+  // Slower: leans forward; bounded by max_lean.
+  o.max_lean = 0.02;
+  CHECK(leanAfterOneStep(g, o, 0.5).error_after_blend == Approx(-0.02).margin(1e-12));
+  // No lean at the gait's speed.
+  CHECK(leanAfterOneStep(g, o, 1.0).error_after_blend == Approx(0.0).margin(1e-9));
+}
+
+TEST_CASE("Walker with a double support leans only once the DS rate correction is at its bound",
+          "[control][walker]") {
+  const DefaultGait g;
+  WalkerOptions o = walkerOptionsFor(g.gait.options, g.model);
+  o.lean_gain = 0.1;
+  o.lean_integral_gain = 0.05;
+  // +50 % within the rate correction's reach (0.2 × 0.5 < 0.3): the DS alone regulates.
+  CHECK(leanAfterOneStep(g, o, 1.5).error_after_blend == Approx(0.0).margin(1e-12));
+  // Beyond it (0.2 × 2 > 0.3): the lean acts, 0.1 × 2 + 0.05 × 2.
+  CHECK(leanAfterOneStep(g, o, 3.0).error_after_blend == Approx(0.3).margin(1e-9));
+}
+
+TEST_CASE("Walker measures the slope between the feet and leans back downhill by its CoM shift",
+          "[control][walker]") {
+  const DefaultGait g;
+  const GaitMotion<double>& mo = g.evaluation.motion;
+  WalkerOptions o = walkerOptionsFor(g.gait.options, g.model);
+  Vec5 q_end, qd;
+  ssState(mo, mo.alpha_fSS, mo.alphadot_fSS, q_end, qd);
+  // The touchdown configuration turned by δ about foot 1 turns the feet's direction by ±δ.
+  const auto slope = [&](double turn) {
+    return groundSlopeBetweenFeet(g.model, Vec5(q_end + turn * Vec5::Unit(0)));
+  };
+  CHECK(std::abs(slope(0.0)) < 2e-3);  // the gait lands on level ground
+  const double per_turn = (slope(1e-3) - slope(-1e-3)) / 2e-3;
+  CHECK(std::abs(per_turn) == Approx(1.0).epsilon(1e-6));
+  const double gamma = -0.03;
+  const double turn = (gamma - slope(0.0)) / per_turn;
+  CHECK(slope(turn) == Approx(gamma).margin(1e-9));
+  // At the gait's speed only the slope compensation leans the trunk.
+  const double lean = leanAfterOneStep(g, o, 1.0, turn).error_after_blend;
+  CHECK(lean > 0.1);  // back, downhill
+  // Independent of the walker's formula: the lean moves the centre of mass at mid single
+  // support back by as much as turning the configuration by the slope moves it forward.
+  Vec5 q_mid;
+  ssState(mo, 0.5 * (mo.q_iSS(0) + mo.alpha_fSS), mo.alphadot_iSS, q_mid, qd);
+  const auto com_x = [&](const Vec5& q) { return pinnedTerms(g.model, q, Vec5(Vec5::Zero())).com(0); };
+  const double forward = com_x(Vec5(q_mid + (gamma / per_turn) * Vec5::Unit(0))) - com_x(q_mid);
+  const double back = com_x(Vec5(q_mid - lean * Vec5::Unit(2))) - com_x(q_mid);
+  CHECK(std::abs(forward) > 0.01);
+  CHECK(back == Approx(-forward).epsilon(0.1));
+  // Within the dead band: level ground, no lean.
+  const double small = (0.5 * o.slope_deadband - slope(0.0)) / per_turn;
+  CHECK(leanAfterOneStep(g, o, 1.0, small).error_after_blend == Approx(0.0).margin(1e-9));
+  o.slope_compensation = 0.0;
+  CHECK(leanAfterOneStep(g, o, 1.0, turn).error_after_blend == Approx(0.0).margin(1e-9));
 }
 
 }  // namespace gaitopt::test

@@ -67,6 +67,15 @@ typedef struct {
  *                  (the cyclic curve at the bounds of the LPs (4.14)) or cubic
  *   torque_limits  default true: project the inputs on the torque envelope and the
  *                  contact constraints
+ *   lean_gain      default 0.1: single-support speed regulation, trunk lean [rad] per
+ *                  relative error of the last step's speed (back when too fast), >= 0
+ *   lean_integral_gain  default 0.05: trunk lean [rad] added per relative step speed
+ *                  error, summed over the steps, >= 0 (with a double support the lean acts
+ *                  once the double support's rate correction is at its bound)
+ *   max_lean       default 0.6: bound of the trunk lean [rad], > 0
+ *   slope_compensation  default 1: scale of the trunk lean that compensates the slope
+ *                  measured between the feet at each touchdown, >= 0 (0: off)
+ *   slope_deadband default 0.005: a measured slope within +- this [rad] is level, >= 0
  * An unknown key, a value of the wrong type or out of range is an error.
  * Returns NULL on failure and then, unless error is NULL, writes a NUL-terminated message
  * naming the file (or the options key) and the problem into error, truncated to

@@ -44,6 +44,17 @@ struct WalkerOptions : ControllerOptions {
   // plant's rotor model, a slope, a heavier trunk).
   double speed_gain = 0.2;
   double max_rate_correction = 0.3;
+  // Single-support speed regulation (Walker::regulateLean): trunk lean [rad] = lean_gain × the
+  // last step's relative speed error + the sum of lean_integral_gain × the errors, within
+  // ±max_lean.
+  double lean_gain = 0.1;
+  double lean_integral_gain = 0.05;
+  double max_lean = 0.6;
+  // Slope compensation: at each touchdown the ground's inclination γ is measured between the
+  // feet, and the trunk leans by −slope_compensation × (z_c / ∂x_c/∂pitch) γ (back downhill),
+  // added to the regulation's lean; a slope within ±slope_deadband [rad] is level ground.
+  double slope_compensation = 1.0;
+  double slope_deadband = 0.005;
 };
 
 // The controller options a gait asks for: its friction cones, normal-force margin and torque
@@ -104,12 +115,24 @@ class Walker {
   void switchPhase(const WalkerState& s);
   bool fallen(const WalkerState& s, const Vec5& q) const;
   double stanceFootX(const WalkerState& s) const;  // world x of leg 1's foot
-  double rateScale(const WalkerState& s);          // after a touchdown: the DS's rate scale
+  Stance startingLeg(const WalkerState& s) const;  // leg 1 at the first sample
+  double stepSpeedError(const WalkerState& s);  // at a touchdown: the last step's speed error
+  double rateScale(double error);               // after a touchdown: the DS's rate scale
+  void regulateLean(double error);              // after a touchdown: the SS trunk lean
+  double lean_integral_ = 0.0;
+  double slope_ = 0.0;             // the ground's inclination measured at the last touchdown
+  double slope_lean_ratio_ = 0.0;  // trunk lean per radian of slope (walker.cpp)
+  double slopeLean() const;
 };
 
 // Pinned coordinates q = (α, δ1..δ4) and rates of the measured state with `leg1` as leg 1
 // ((1.13): pitch = α + δ1 − δ2, φ = (δ1, −δ2, −(δ2 + δ3), δ4) in leg-1 order).
 void pinnedStateOf(const WalkerState& s, Stance leg1, Vec5& q, Vec5& qd);
+
+// The ground's inclination [rad], + uphill, between the feet of the pinned configuration q
+// (α absolute, both feet on the ground): the direction from foot 1 to foot 2. The walker
+// measures it at each touchdown.
+double groundSlopeBetweenFeet(const Model& model, const Vec5& q);
 
 // Leg-1 joint order (knee 1, hip 1, hip 2, knee 2) ↔ physical order: an involution.
 Vec4 physicalOrder(const Vec4& leg_order, Stance leg1);

@@ -52,7 +52,16 @@ struct ControllerOptions {
   // thesis' freeze, §4.3.1.3, made C¹).
   bool hold_references_past_fss = false;
   DsAlphaControl ds_control = DsAlphaControl::Cubic;
+  // Offsets added to the SS references δ_d(α) (leg-1 order): `offset` over the step, blended in
+  // from `offset_at_start` (the previous step's) over the first kOffsetBlend of s, so the
+  // references stay continuous when a step-to-step regulator changes them at a touchdown
+  // (control/walker.hpp: the trunk lean of the single-support speed regulation). The double
+  // support's references δ1,2 (leg 1 the front leg) carry offset_at_start.
+  Vec4 offset = Vec4::Zero(), offset_at_start = Vec4::Zero();
 };
+
+// Fraction of the SS phase s over which ControllerOptions::offset_at_start blends into offset.
+constexpr double kOffsetBlend = 0.3;
 
 struct PdGains {
   double kp, kd;  // [1/s²], [1/s]
