@@ -90,6 +90,9 @@ GaitGradient GaitEvaluator::gradientWith(const GaitParameters& p, bool ds_piece_
   r.dcriteria_kinks.resize(static_cast<int>(ad.criteria_kinks.size()), n);
   for (int k = 0; k < r.dcriteria_kinks.rows(); ++k)
     r.dcriteria_kinks.row(k) = gradientOf(ad.criteria_kinks[k], n).transpose();
+  r.dtorque_residuals.resize(static_cast<int>(ad.torque_residuals.size()), n);
+  for (int k = 0; k < r.dtorque_residuals.rows(); ++k)
+    r.dtorque_residuals.row(k) = gradientOf(ad.torque_residuals[k], n).transpose();
   for (const auto& piece : ad.ds_piece_g) {
     Eigen::MatrixXd& d = r.dds_piece_g.emplace_back(static_cast<int>(piece.size()), n);
     for (int k = 0; k < d.rows(); ++k) d.row(k) = gradientOf(piece[k], n).transpose();

@@ -43,7 +43,8 @@ const std::array<const char*, 3> kCriteria = {"C_Gamma", "C_E", "W"};
 const std::array<const char*, 3> kBackends = {"nlopt_slsqp", "ipopt", "nlopt_cobyla"};
 const std::array<const char*, 2> kHierarchies = {"staged", "direct"};
 const std::array<const char*, 2> kGradientModes = {"exact", "finite_difference"};
-const std::array<const char*, 4> kHessians = {"limited_memory", "bfgs", "exact", "exact_unmodified"};
+const std::array<const char*, 5> kHessians = {"limited_memory", "bfgs", "exact", "exact_unmodified",
+                                              "gauss_newton"};
 
 bool isPlainFileName(const std::string& name) {
   return !name.empty() && name != "." && name != ".." && name.size() <= 255 &&

@@ -32,6 +32,16 @@ class CriterionCost : public CostTerm {
     grad = criterionGradient(g, criterion_) / scale_;
     return true;
   }
+  // C_Γ = Σ r_i² (GaitEvaluation::torque_residuals): its Gauss–Newton Hessian 2 JᵀJ from the
+  // residuals' Jacobian, which the gradient pass computes anyway. W and C_E integrate kinked
+  // integrands (|Γ*_j ω_j|, max(0, P)), no sum of squares: none.
+  bool hasHessian() const override { return criterion_ == Criterion::Torque; }
+  bool hessian(const VectorX& x, Eigen::Ref<MatrixX> hess) override {
+    const GaitGradient& g = cache_.gradient(toParameters(x));
+    if (!motionAvailable(g.value) || criterion_ != Criterion::Torque) return false;
+    hess.noalias() = (2.0 / scale_) * g.dtorque_residuals.transpose() * g.dtorque_residuals;
+    return true;
+  }
 
  private:
   GaitEvaluationCache& cache_;
@@ -50,6 +60,11 @@ class DistanceCost : public CostTerm {
   }
   bool gradient(const VectorX& x, Eigen::Ref<VectorX> grad) override {
     grad = 2.0 * w_.cwiseProduct(x - ref_);
+    return true;
+  }
+  bool hasHessian() const override { return true; }
+  bool hessian(const VectorX&, Eigen::Ref<MatrixX> hess) override {
+    hess = (2.0 * w_).asDiagonal();
     return true;
   }
 

@@ -40,6 +40,21 @@ bool NlpProblem::costGradient(const VectorX& x, VectorX& grad) {
   return true;
 }
 
+bool NlpProblem::hasCostHessian() const {
+  return std::all_of(costs_.begin(), costs_.end(),
+                     [](const std::unique_ptr<CostTerm>& t) { return t->hasHessian(); });
+}
+
+bool NlpProblem::costHessian(const VectorX& x, MatrixX& hess) {
+  hess = MatrixX::Zero(x.size(), x.size());
+  MatrixX h(x.size(), x.size());
+  for (const auto& term : costs_) {
+    if (!term->hessian(x, h)) return false;
+    hess += h;
+  }
+  return true;
+}
+
 bool NlpProblem::constraints(const VectorX& x, VectorX& g) {
   g.resize(num_constraints_);
   int row = 0;

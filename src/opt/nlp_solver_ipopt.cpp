@@ -102,9 +102,11 @@ class TnlpAdapter : public Ipopt::TNLP {
     const VectorX xv = Eigen::Map<const VectorX>(x, n);
     const VectorX lv = Eigen::Map<const VectorX>(lambda, m);
     MatrixX hess;
-    if (!(settings_.hessian == HessianMode::DenseBfgs ? bfgsHessian(xv, sigma, lv, hess)
-                                                      : exactHessian(xv, sigma, lv, hess)))
-      return false;
+    const HessianMode mode = settings_.hessian;
+    const bool ok = mode == HessianMode::GaussNewton ? gaussNewtonHessian(xv, sigma, lv, hess)
+                    : mode == HessianMode::DenseBfgs ? bfgsHessian(xv, sigma, lv, hess)
+                                                     : exactHessian(xv, sigma, lv, hess);
+    if (!ok) return false;
     for (Index i = 0, k = 0; i < n; ++i)
       for (Index j = 0; j <= i; ++j, ++k) values[k] = hess(i, j);
     return true;
@@ -136,18 +138,34 @@ class TnlpAdapter : public Ipopt::TNLP {
   const NlpSolution& solution() const { return solution_; }
 
  private:
-  // BFGS pair from the previous Hessian point, both gradients taken with today's multipliers.
-  bool bfgsHessian(const VectorX& x, double sigma, const VectorX& lambda, MatrixX& hess) {
+  // BFGS pair from the previous Hessian point, both gradients taken with today's multipliers;
+  // `known` (σ times the cost's Hessian at x, or empty) is the part of the Lagrangian's
+  // curvature given exactly: the pair's y leaves out its share, and it is added to the model.
+  bool bfgsHessian(const VectorX& x, double sigma, const VectorX& lambda, MatrixX& hess,
+                   const MatrixX& known = MatrixX()) {
     VectorX grad_f;
     MatrixX jac;
     if (!problem_.costGradient(x, grad_f) || !problem_.constraintJacobian(x, jac)) return false;
-    if (last_x_.size() > 0 && last_x_ != x)
-      bfgs_.update(x - last_x_, sigma * (grad_f - last_grad_f_) + (jac - last_jac_).transpose() * lambda);
+    if (last_x_.size() > 0 && last_x_ != x) {
+      const VectorX s = x - last_x_;
+      VectorX y = sigma * (grad_f - last_grad_f_) + (jac - last_jac_).transpose() * lambda;
+      if (known.size() > 0) y -= known * s;
+      bfgs_.update(s, y);
+    }
     last_x_ = x;
     last_grad_f_ = grad_f;
     last_jac_ = jac;
     hess = bfgs_.matrix();
+    if (known.size() > 0) hess += known;
     return true;
+  }
+  bool gaussNewtonHessian(const VectorX& x, double sigma, const VectorX& lambda, MatrixX& hess) {
+    if (!problem_.hasCostHessian()) return bfgsHessian(x, sigma, lambda, hess);
+    MatrixX known;
+    if (!problem_.costHessian(x, known)) return false;
+    // The Gauss–Newton part alone (no model of the rest) measured worse: Ipopt failed on the
+    // default problem, the constraints' curvature matters at its active rows.
+    return bfgsHessian(x, sigma, lambda, hess, sigma * known);
   }
   bool exactHessian(const VectorX& x, double sigma, const VectorX& lambda, MatrixX& hess) {
     if (!problem_.lagrangianHessian(x, sigma, lambda, hess)) return false;

@@ -21,8 +21,10 @@ namespace gaitopt::detail {
 
 // Smooth integrands of the criteria at one sample: Γ*ᵀΓ*, Γ*ᵀω, the electrical power P (3.32)
 // and the joint powers Γ*_j ω_j. C_E and W integrate max(0, P) and Σ_j |Γ*_j ω_j| (3.147), whose
-// kinks integrateCriteria splits at.
-constexpr int kTorque2 = 0, kMechanical = 1, kPower = 2, kJointPower = 3, kNumIntegrands = 7;
+// kinks integrateCriteria splits at. The last four are Γ*_j / √|rate|, whose squares sum to
+// Γ*ᵀΓ*'s integrand: C_Γ's least-squares residuals (GaitEvaluation::torque_residuals).
+constexpr int kTorque2 = 0, kMechanical = 1, kPower = 2, kJointPower = 3, kTorqueRoot = 7,
+              kNumIntegrands = 11;
 template <class S>
 using IntegrandValues = std::array<Eigen::Matrix<S, Eigen::Dynamic, 1>, kNumIntegrands>;
 
@@ -43,6 +45,9 @@ void setIntegrands(const Model& m, const PhaseSample<S>& s, int k, const S& phas
   f[kMechanical](k) = mech / phase_rate;
   f[kPower](k) = (mech + jouleCoefficient(m) * torque2) / phase_rate;
   for (int j = 0; j < 4; ++j) f[kJointPower + j](k) = s.gamma_star(j) * s.omega(j) / phase_rate;
+  using std::sqrt;
+  const S root_rate = sqrt(valueOf(phase_rate) < 0.0 ? S(-phase_rate) : phase_rate);
+  for (int j = 0; j < 4; ++j) f[kTorqueRoot + j](k) = s.gamma_star(j) / root_rate;
 }
 
 // C_Γ, C_E, W, C_frott (times d) over one smooth piece x ∈ [a, b] of a phase, from the
@@ -52,12 +57,20 @@ void setIntegrands(const Model& m, const PhaseSample<S>& s, int k, const S& phas
 // The kinks of max(0, P) and |Γ*_j ω_j| are appended to `kinks`, in x, in time order.
 constexpr int kCriterionCGamma = 0, kCriterionCE = 1, kCriterionW = 2, kCriterionCFrott = 3;
 
-// C_Γ and C_frott: smooth integrands, the Clenshaw–Curtis sum.
+// C_Γ and C_frott: smooth integrands, the Clenshaw–Curtis sum. The Clenshaw–Curtis weights
+// are positive, so C_Γ's sum is one of squares: √(w_k |b − a| / 2) Γ*_j / √|rate| at each
+// node are appended to `torque_residuals` (Σ r² = this piece's C_Γ · d).
 template <class S>
 void integrateSmoothCriteria(const ChebyshevGrid& grid, const IntegrandValues<S>& f, const S& a,
-                             const S& b, std::array<S, 4>& r) {
+                             const S& b, std::array<S, 4>& r, std::vector<S>& torque_residuals) {
   r[kCriterionCGamma] = integrateOverInterval(grid, f[kTorque2], a, b);
   r[kCriterionCFrott] = integrateOverInterval(grid, f[kMechanical], a, b);
+  using std::sqrt;
+  const S half_length = 0.5 * (valueOf(b) < valueOf(a) ? S(a - b) : S(b - a));
+  for (int k = 0; k < grid.size(); ++k) {
+    const S root_weight = sqrt(grid.weights()[k] * half_length);
+    for (int j = 0; j < 4; ++j) torque_residuals.push_back(root_weight * f[kTorqueRoot + j](k));
+  }
 }
 
 // C_E and W: the interpolants split at their roots (math/chebyshev_abs_integral.hpp).
@@ -79,9 +92,10 @@ void integrateKinkedCriteria(const ChebyshevGrid& grid, const IntegrandValues<S>
 
 template <class S>
 std::array<S, 4> integrateCriteria(const ChebyshevGrid& grid, const IntegrandValues<S>& f,
-                                   const S& a, const S& b, std::vector<S>& kinks) {
+                                   const S& a, const S& b, std::vector<S>& kinks,
+                                   std::vector<S>& torque_residuals) {
   std::array<S, 4> r;
-  integrateSmoothCriteria(grid, f, a, b, r);
+  integrateSmoothCriteria(grid, f, a, b, r, torque_residuals);
   integrateKinkedCriteria(grid, f, a, b, r, kinks);
   return r;
 }
@@ -170,7 +184,8 @@ std::array<S, 4> integrateDsPiecewise(EvalContext<S>& c, const DsPieces& pieces)
       setIntegrands(c.model, s, k, S(1.0), f);
       if (c.record_pieces) recordPieceSample(c, ends, piece, k, s);
     }
-    const std::array<S, 4> part = integrateCriteria(c.piece_grid, f, a, b, c.out.criteria_kinks);
+    const std::array<S, 4> part =
+        integrateCriteria(c.piece_grid, f, a, b, c.out.criteria_kinks, c.out.torque_residuals);
     for (int i = 0; i < 4; ++i) total[i] += part[i];
   }
   return total;
@@ -188,7 +203,7 @@ std::array<S, 4> ssCriteria(EvalContext<S>& c, const std::vector<SsPathPoint<S>>
   const S& a = mo.alpha_iSS;
   const S& b = mo.alpha_fSS;
   std::array<S, 4> r;
-  integrateSmoothCriteria(c.ss_grid, ss_int, a, b, r);
+  integrateSmoothCriteria(c.ss_grid, ss_int, a, b, r, c.out.torque_residuals);
   const ChebyshevGrid& fine = c.ss_criteria_grid;
   const int refinement = fine.degree() / c.ss_grid.degree();
   if (refinement == 1) {

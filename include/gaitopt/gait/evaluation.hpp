@@ -60,6 +60,10 @@ template <class S> struct GaitEvaluation {
   // (t from the DS start [s]), each phase in time order.
   std::vector<S> criteria_kinks;
   int ss_criteria_kinks = 0;
+  // C_Γ as a sum of squares, C_Γ = Σ r_i² (3.28): √(quadrature weight / d) times each torque
+  // Γ*_j / √|phase rate| at the SS nodes, then at the DS (or DS piece) nodes. Their Jacobian J
+  // gives the Gauss–Newton Hessian 2 JᵀJ of C_Γ.
+  std::vector<S> torque_residuals;
 
   // Defined in the thesis' sense: every level below the criterion's (0–4) holds.
   bool defined() const { return failed_level < 0 || failed_level >= 5; }

@@ -31,6 +31,7 @@ struct GaitGradient {
   Eigen::MatrixXd dg;  // rows: constraints, columns: parameters
   GaitParameters dC_Gamma, dC_E, dW, dC_frott, dT_SS, dT_DS, dspeed;
   Eigen::MatrixXd dcriteria_kinks;  // rows: the AD pass's criteria_kinks (implicit functions)
+  Eigen::MatrixXd dtorque_residuals;  // rows: value.torque_residuals
   std::vector<Eigen::MatrixXd> dds_piece_g;  // per DS piece: rows as value.ds_piece_g
 };
 

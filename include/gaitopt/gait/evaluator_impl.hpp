@@ -39,7 +39,8 @@ template <class S> std::array<S, 4> dsMotionStage(EvalContext<S>& c, ConstraintS
   }
   c.out.ds_pieces = c.known_pieces ? *c.known_pieces : dsPieces(c, ts, branch, switching);
   return c.out.ds_pieces.switch_times.empty()
-             ? integrateCriteria(c.ds_grid, ds_int, S(0.0), mo.T_DS, c.out.criteria_kinks)
+             ? integrateCriteria(c.ds_grid, ds_int, S(0.0), mo.T_DS, c.out.criteria_kinks,
+                                 c.out.torque_residuals)
              : integrateDsPiecewise(c, c.out.ds_pieces);
 }
 
@@ -70,6 +71,9 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
   c.out.C_E = crit[1];
   c.out.W = crit[2];
   c.out.C_frott = crit[3];
+  using std::sqrt;
+  const S root_d = sqrt(mo.d);
+  for (S& r : c.out.torque_residuals) r /= root_d;
   c.out.motion_computed = true;
 }
 
@@ -93,6 +97,7 @@ template <class S> void discardNonFiniteMotion(EvalContext<S>& c) {
     }
   out.C_Gamma = out.C_E = out.W = out.C_frott = S(0.0);
   out.criteria_kinks.clear();
+  out.torque_residuals.clear();
   out.ss_criteria_kinks = 0;
   out.ds_piece_g.clear();
   out.ds_piece_bounds.clear();

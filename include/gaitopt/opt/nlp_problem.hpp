@@ -20,6 +20,9 @@ class CostTerm {
   // false: undefined at x.
   virtual bool value(const VectorX& x, double& f) = 0;
   virtual bool gradient(const VectorX& x, Eigen::Ref<VectorX> grad) = 0;
+  // Whether hessian() exists: a sum of squares' Gauss–Newton Hessian or an exact one.
+  virtual bool hasHessian() const { return false; }
+  virtual bool hessian(const VectorX&, Eigen::Ref<MatrixX>) { return false; }
 };
 
 class ConstraintSet {
@@ -49,6 +52,9 @@ class NlpProblem {
   void constraintBounds(VectorX& lower, VectorX& upper) const;
   bool cost(const VectorX& x, double& f);
   bool costGradient(const VectorX& x, VectorX& grad);
+  // Every cost term has a Hessian (CostTerm::hasHessian); costHessian sums them.
+  bool hasCostHessian() const;
+  bool costHessian(const VectorX& x, MatrixX& hess);
   bool constraints(const VectorX& x, VectorX& g);
   bool constraintJacobian(const VectorX& x, MatrixX& jac);
   // ∇ₓ(σ f + λᵀ g).

@@ -20,7 +20,10 @@ enum class HessianMode {
   DenseBfgs,      // a dense damped BFGS of the Lagrangian kept by the adapter (n is small)
   Exact,          // finite differences of the exact gradients, positive-definite on the null
                   // space of the active constraints
-  ExactUnmodified // the same, indefinite: left to Ipopt's inertia correction
+  ExactUnmodified, // the same, indefinite: left to Ipopt's inertia correction
+  GaussNewton      // the cost's own Hessian where every term has one (C_Γ: 2 JᵀJ of its
+                   // residuals; the distance: exact) plus a damped BFGS of the remainder
+                   // (constraint curvature); a cost without one: DenseBfgs
 };
 
 // Bound and constraint multipliers: a solve's final ones, or a warm start for the next solve.
