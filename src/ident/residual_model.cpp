@@ -88,20 +88,59 @@ void putGamma(const MeasuredData& d, std::size_t i, const Vec4& predicted, const
       row[kGammaKneeLeft + physicalJointOfMotor(j, d.stance[i])] = d.gamma[i](j) - predicted(j);
 }
 
+// The single-support equations at sample i: point foot, the pinned model; rocker foot, its
+// equations in the ankle frame.
+struct StanceForces {
+  ChainState<double> state;
+  RockerContact<double> contact;
+  RockerForces<double> forces;
+};
+
+StanceForces stanceForces(const StanceModels& sm, const Model& m, const Kinematics& k, std::size_t i) {
+  StanceForces f{chainState(m, k.q[i], k.qd[i]),
+                 rockerContact(sm.foot_radius, sm.foot_offset, sm.slope, k.q[i](0), k.qd[i](0),
+                               k.qdd[i](0)),
+                 {}};
+  f.forces = rockerForces(m, f.state, pinnedMotionForces(m, f.state, k.qdd[i]), f.contact);
+  return f;
+}
+
+// With centres of pressure, the world x of the stance ankle over a single-support segment: the
+// unloaded swing foot's (cop2x: an unloaded leg's point foot) minus the chain's swing foot
+// relative to the stance ankle, averaged over the segment — the model's ankle stands still (a
+// rolling foot's moves at second order in the tibia angle), a person's rises and rolls forward
+// with the heel, which is the foot's own motion, part of the CoP's travel about it.
+double stanceAnkleX(const MeasuredData& d, const Model& m, const Kinematics& k, const Segment& s) {
+  double sum = 0.0;
+  for (std::size_t i = s.begin; i < s.end; ++i)
+    sum += d.cop[i][1] - chainPoint(m.pinned.foot2, chainState(m, k.q[i], k.qd[i]))(0);
+  return sum / static_cast<double>(s.end - s.begin);
+}
+
+// With centres of pressure the foot moment about the point foot is measured, and the α row
+// compares the dynamics with it: the model's ground moment about the stance ankle is replaced
+// by the measured one (the foot is then checked by the cop1x channel, not inferred from the
+// dynamics). The measured moment is the measured reaction at the measured CoP; its arm along x
+// is the CoP's from the stance ankle (`ankle`, stanceAnkleX), its height the model's (the data
+// do not say how far the contact lies below the ankle). Returns the model's moment minus the
+// measured one.
+double footMomentError(const MeasuredData& d, const StanceForces& f, double ankle, std::size_t i) {
+  const Vec2& arm = f.contact.contact_arm;
+  const Vec2 measured_arm(d.cop[i][0] - ankle, arm(1));
+  const auto moment = [](const Vec2& r, const Vec2& force) { return r(0) * force(1) - r(1) * force(0); };
+  return moment(arm, f.forces.reaction) - moment(measured_arm, d.reactions[i].head<2>());
+}
+
+// `ankle`: the stance ankle's world x (stanceAnkleX) when the data have centres of pressure.
 void singleSupportRow(const PreparedData& p, const StanceModels& sm, const Kinematics& k,
-                      const Kinematics& ka, std::size_t i, double* row) {
+                      const Kinematics& ka, double ankle, std::size_t i, double* row) {
   const MeasuredData& d = p.data;
   const int st = static_cast<int>(d.stance[i]);
   const Model& m = sm.model[st];
-  // Point foot: the pinned model; rocker foot: its equations in the ankle frame.
-  const auto forces = [&](const Kinematics& kin) {
-    const ChainState<double> state = chainState(m, kin.q[i], kin.qd[i]);
-    return rockerForces(m, state, pinnedMotionForces(m, state, kin.qdd[i]),
-                        rockerContact(sm.foot_radius, sm.foot_offset, sm.slope, kin.q[i](0),
-                                      kin.qd[i](0), kin.qdd[i](0)));
-  };
-  const RockerForces<double> rf = forces(k);
-  row[kAlphaRow] = forces(ka).tau(0);  // the α row has its own, smoother, kinematics
+  const RockerForces<double> rf = stanceForces(sm, m, k, i).forces;
+  const StanceForces fa = stanceForces(sm, m, ka, i);  // the α row's own, smoother, kinematics
+  row[kAlphaRow] = fa.forces.tau(0);
+  if (d.has_cop) row[kAlphaRow] += m.theta_map(0, 0) * footMomentError(d, fa, ankle, i);
   const Vec4 gamma = solveDGamma25(Vec4(rf.tau.tail<4>())) +
                      frictionTorque(m, jointSpeeds(k.qd[i]), SignMode::Smooth);  // (3.57)
   putGamma(d, i, sm.gain[st].cwiseProduct(gamma) + sm.offset[st], k.qd[i], row);
@@ -137,9 +176,9 @@ void doubleSupportRow(const PreparedData& p, const StanceModels& sm, const Kinem
 }
 
 // The cop1x channel of a single-support segment (residual_model.hpp): measured minus predicted
-// contact-point travel, each about its mean over the segment.
+// contact-point travel, each about its mean over the segment, at the segment's samples of `rows`.
 void copTravelRows(const PreparedData& p, const RobotParams& robot, const Kinematics& k,
-                   const Segment& s, ResidualMatrix& r) {
+                   const Segment& s, const std::vector<char>& rows, ResidualMatrix& r) {
   const MeasuredData& d = p.data;
   const auto predicted = [&](std::size_t i) {  // rolling without slipping, along the ground
     return -robot.foot_radius * (k.q[i](0) - robot.ground_slope) * std::cos(robot.ground_slope);
@@ -147,7 +186,8 @@ void copTravelRows(const PreparedData& p, const RobotParams& robot, const Kinema
   double mean = 0.0;
   for (std::size_t i = s.begin; i < s.end; ++i) mean += d.cop[i][0] - predicted(i);
   mean /= static_cast<double>(s.end - s.begin);
-  for (std::size_t i = s.begin; i < s.end; ++i) r(i, kCopX) = d.cop[i][0] - predicted(i) - mean;
+  for (std::size_t i = s.begin; i < s.end; ++i)
+    if (rows[i]) r(i, kCopX) = d.cop[i][0] - predicted(i) - mean;
 }
 
 }  // namespace
@@ -167,14 +207,16 @@ ResidualMatrix residuals(const PreparedData& p, const RobotParams& robot,
   const Kinematics ka = linkKinematics(p, robot, sm, p.measured_alpha_row, p.alpha_row_differentiator);
   ResidualMatrix r = ResidualMatrix::Constant(p.data.size(), kNumChannels, kNaN);
   for (const Segment& s : p.segments) {
+    const bool ss = s.phase == Phase::SingleSupport, cop = ss && p.data.has_cop;
+    const double ankle = cop ? stanceAnkleX(p.data, sm.model[static_cast<int>(s.stance)], k, s) : kNaN;
     for (std::size_t i = s.begin; i < s.end; ++i) {
       if (!rows[i]) continue;
-      if (s.phase == Phase::SingleSupport)
-        singleSupportRow(p, sm, k, ka, i, r.row(i).data());
+      if (ss)
+        singleSupportRow(p, sm, k, ka, ankle, i, r.row(i).data());
       else
         doubleSupportRow(p, sm, k, robot.ground_slope, i, r.row(i).data());
     }
-    if (p.data.has_cop && s.phase == Phase::SingleSupport && rows[s.begin]) copTravelRows(p, robot, k, s, r);
+    if (cop) copTravelRows(p, robot, k, s, rows, r);
   }
   return r;
 }

@@ -61,7 +61,9 @@ TEST_CASE("diagnose on the shipped OpenSim trial names the foot, held out across
     // Of the order of roll-over-shape radii (0.3 × leg length, leg 0.98 m; docs/commands/import-opensim.md: ≈ 0.5).
     CHECK(dg.extended_robot.foot_radius > 0.2);
     CHECK(dg.extended_robot.foot_radius < 0.75);
-    CHECK(dg.rms_reduction_pct[kAlphaRow] > 50.0);
+    // The foot moment is measured (the α row); the rolling foot is checked by the CoP travel,
+    // which a rocker explains on the other leg's stances as in the import's own CoP fit.
+    CHECK(dg.rms_reduction_pct[kCopX] > 50.0);
     CHECK_THAT(diagnosisReport(dg), Contains("the point foot is the cause"));
   }
 }

@@ -3,7 +3,9 @@
 // per sample and channel (issue 9, step 2). At the measured kinematics (smoothed, corrected for
 // the description's encoder offsets and backlash):
 //  - alpha_row (SS): the α-row of (1.32), the moment a point foot would have to supply; 0 if
-//    the model were right, available without any torque sensor;
+//    the model were right, available without any torque sensor; with measured centres of
+//    pressure the foot moment is measured, and the row has the measured reaction's moment about
+//    the stance ankle (at the measured CoP) in place of the model foot's;
 //  - gamma_<joint> (SS, DS): measured Γ* − (torque_gain × Γ* + torque_offset), Γ* by (3.57) in
 //    SS and (3.62) in DS with R2x measured (or, without reaction columns, the R2x that best fits
 //    the measured torques);
