@@ -20,7 +20,7 @@
 //       Hessian, every grid entry in one NLP, no polish), `ipopt-runs` runs each (default 3):
 //       status, iterations, evaluations, wall-time median, final criterion, ratio Ipopt/SLSQP.
 //       --ipopt-only runs (d) alone.
-//   (g) --random-starts N: the random-start protocol alone (issue 14 item 3): on the three
+//   (g) --random-starts N: the random-start protocol alone: on the three
 //       shipped configurations, N seeded starts (seed 1, the box of `--random-starts`, every
 //       start optimised: globalSearch without the basin skip): converged rate, number of
 //       clusters of optimal criteria (0.1 %), largest cluster's share of the N starts, median

@@ -23,7 +23,7 @@ constexpr std::array<EffectInfo, kNumEffectKinds> kEffects = {{
     {"inertial", "", false, false, false, 1.0, true},
 }};
 
-// Width of the smoothed sign of the backlash dead band [N·m] (issue: "about 1 N·m").
+// Width of the smoothed sign of the backlash dead band [N·m]: about 1 N·m.
 constexpr double kBacklashTorqueWidth = 1.0;
 
 }  // namespace

@@ -85,7 +85,7 @@ TEST_CASE("bad input: outputs never follow a planted link", "[reliability]") {
   CHECK_FALSE(fs::is_symlink(out / "summary.json"));
   CHECK_THAT(readFile((out / "summary.json").string()), Contains("\"C_Gamma\""));
 
-  // The case: a planted summary.json.tmp is not gaitopt's, so --out is refused.
+  // A planted summary.json.tmp is not gaitopt's, so --out is refused.
   const fs::path planted = scratch().fresh("out_planted");
   fs::create_directories(planted);
   fs::create_symlink(precious, planted / "summary.json.tmp");

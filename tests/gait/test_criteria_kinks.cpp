@@ -68,8 +68,8 @@ bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 TEST_CASE("W and C_E split at their kinks equal a 4x refined evaluation", "[gait][kinks]") {
   // Measured, relative to the 4x grids: with the default criteria_refinement 2 (W and C_E
-  // sampled on the 65-node SS grid) W <= 2.2e-14 and C_E <= 1.7e-13 on the five gaits (issue
-  // 14 item 6's target: 1e-9). On the 33-node SS grid alone (refinement 1) the interpolant of
+  // sampled on the 65-node SS grid) W <= 2.2e-14 and C_E <= 1.7e-13 on the five gaits (target:
+  // 1e-9). On the 33-node SS grid alone (refinement 1) the interpolant of
   // the integrands between the nodes leaves W up to 5.9e-7 off (the Chesse Ipopt point), and on
   // the last two gaits the motion itself is under-resolved (C_Gamma off by 2.3e-8, 9.9e-9; C_E by
   // 1.7e-6 on the Ipopt optimum), which Phi integrated on the finer grid removes. Before the

@@ -1,4 +1,4 @@
-// gaitopt diagnose on hidden effects (issue 9): one seeded case per effect at 20 steps, null
+// gaitopt diagnose on hidden effects: one seeded case per effect at 20 steps, null
 // data, two effects at once, a confounded pair, and invariance to column order and to a
 // consistent swap of the stance labels, the `inertial` last resort. The >= 100-case hit rate is
 // bench/bench_diagnose_hitrate.cpp.
@@ -47,7 +47,7 @@ void requireFound(const Diagnosis& d, const Effect& truth) {
   INFO("found " << effectLabel(c.effect) << " = " << c.effect.value << " +- " << c.stderr_);
   CHECK(effectLabel(c.effect) == effectLabel(truth));
   CHECK(std::abs(deviation(c.effect) - deviation(truth)) <= 0.1 * std::abs(deviation(truth)));
-  // The issue's held-out gain, on the channels the cause acts on (Diagnosis::effect_channels).
+  // The held-out gain, on the channels the cause acts on (Diagnosis::effect_channels).
   INFO("effect channels gain " << d.effect_channels_pct << " %, overall " << d.overall_pct << " %");
   CHECK(d.effect_channels_pct > 50.0);
   CHECK(!d.inertial.accepted);  // a named effect explains the data: no inertial fall-back

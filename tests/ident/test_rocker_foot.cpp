@@ -1,4 +1,4 @@
-// The rocker_foot effect (issue 10): synth's rolling-foot TRUE model (floating model with the
+// The rocker_foot effect: synth's rolling-foot TRUE model (floating model with the
 // rolling constraint) against the ankle-frame equations diagnose fits; the radius recovered
 // from synthetic data; no rocker on point-foot data; the robot-file key.
 #include <catch2/catch.hpp>

@@ -191,8 +191,8 @@ TEST_CASE("optimize: the thesis-rules and B-spline Chesse configurations end opt
   const gaitopt::GaitParameters start =
       gaitopt::configuredInitialGuess(thesis.config, thesis.evaluator.model());
   CHECK(thesis.result.evaluation.C_Gamma < thesis.evaluator.evaluate(start).C_Gamma);
-  // B-spline {7, 3}: ~6 s in Release, too slow for the sanitizer pass. Issue 14 item 5's
-  // target: at or below Chesse's Pontryagin value, 1836.
+  // B-spline {7, 3}: ~6 s in Release, too slow for the sanitizer pass. The target:
+  // at or below Chesse's Pontryagin value, 1836.
   if (gaitopt::test::lightTests()) return;
   CHECK(requireOptimal("chesse_0.85_bspline.yaml").result.evaluation.C_Gamma <= 1836.0);
 }

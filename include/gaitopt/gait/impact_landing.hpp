@@ -1,5 +1,5 @@
 #pragma once
-// Landing with an impact (beyond the thesis, issue 8): the swing foot reaches the ground with
+// Landing with an impact (beyond the thesis): the swing foot reaches the ground with
 // the velocity q*(α_fSS) α̇_fSS of the SS path, whose end slopes δ3*, δ4* are now free
 // parameters (the thesis fixes them by a zero foot velocity (3.20)); the algebraic impact
 // (2.1)/(2.13) runs at touchdown with the behaviour the gait family requires:

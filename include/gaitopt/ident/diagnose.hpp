@@ -1,5 +1,5 @@
 #pragma once
-// `gaitopt diagnose` (issue 9): where a robot model's predictions and measured data disagree,
+// `gaitopt diagnose`: where a robot model's predictions and measured data disagree,
 // which candidate effect (ident/effects.hpp) explains it, and how much better the extended model
 // predicts steps it was not fitted on.
 //

@@ -1,7 +1,7 @@
 #pragma once
-// The candidate effects of issue 9 (what the thesis model may get wrong on a real robot), their
-// value conventions, and how each changes a robot description (model/robot_params.hpp,
-// JointExtras, SensorModel, hip_payload, trunk_com_shift, ground_slope,
+// The candidate effects of `gaitopt diagnose` (what the thesis model may get wrong on a real
+// robot), their value conventions, and how each changes a robot description
+// (model/robot_params.hpp, JointExtras, SensorModel, hip_payload, trunk_com_shift, ground_slope,
 // foot_radius, foot_offset). The same description
 // is the TRUE model of `gaitopt synth` and the extended model fitted by `gaitopt diagnose`.
 //
@@ -47,7 +47,7 @@ const EffectInfo& effectInfo(EffectKind kind);
 struct Effect {
   EffectKind kind;
   int joint = kNoJoint;  // physical joint 0..3, kAlphaJoint, or kNoJoint
-  double value = 0.0;    // in the convention of the issue's table
+  double value = 0.0;    // in the convention of docs/commands/diagnose.md's effect table
 };
 
 std::string jointName(int joint);  // "knee_left".."knee_right", "alpha", or "" for none

@@ -1,5 +1,5 @@
 #pragma once
-// The `inertial` candidate of `gaitopt diagnose` (issue 9; digest seed000_inertial_
+// The `inertial` candidate of `gaitopt diagnose` (digest seed000_inertial_
 // identification.md §1.4, §1.10, §4.4): the link inertial parameters in their linear form,
 // the base (identifiable) parameters of a stacked regressor, and a physically consistent
 // least-squares fit.

@@ -1,7 +1,7 @@
 #pragma once
 // What a robot description predicts for measured data, and the residuals measured − predicted
-// per sample and channel (issue 9, step 2). At the measured kinematics (smoothed, corrected for
-// the description's encoder offsets and backlash):
+// per sample and channel (step 2 of `gaitopt diagnose`). At the measured kinematics
+// (smoothed, corrected for the description's encoder offsets and backlash):
 //  - alpha_row (SS): the α-row of (1.32), the moment a point foot would have to supply; 0 if
 //    the model were right, available without any torque sensor; with measured centres of
 //    pressure the foot moment is measured, and the row has the measured reaction's moment about

@@ -74,8 +74,8 @@ MeasuredData synthesize(const RobotParams& robot, const GaitParameters& gait,
                         const GaitOptions& gait_options, const ModelOptions& model_options,
                         const std::vector<Effect>& effects, const SynthOptions& options);
 
-// An effect of `kind` with a seeded random joint and a magnitude in the realistic range of
-// issue 9 (coulomb 1–6 N·m, viscous 1–6 N·m·s/rad, rotor_inertia ×1.3–2, torque_offset ±1–5 N·m,
+// An effect of `kind` with a seeded random joint and a magnitude in its realistic range
+// (coulomb 1–6 N·m, viscous 1–6 N·m·s/rad, rotor_inertia ×1.3–2, torque_offset ±1–5 N·m,
 // torque_gain 0.85–0.95 or 1.05–1.2, encoder_offset ±0.01–0.05 rad (joints or alpha), backlash
 // 0.01–0.04 rad, payload 2–8 kg, trunk_com ±0.02–0.05 m, slope 0.01–0.04 rad): hidden-effect
 // tests of identification pipelines.

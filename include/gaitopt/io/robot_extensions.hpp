@@ -1,6 +1,6 @@
 #pragma once
-// The optional robot-file keys for the effects identified from measured data (issue 9), read
-// by parseRobot; every key is optional and neutral when absent:
+// The optional robot-file keys for the effects identified from measured data (`gaitopt
+// diagnose`), read by parseRobot; every key is optional and neutral when absent:
 //
 //   joint_extras:                  # per physical joint; each joint key optional
 //     coulomb: {knee_right: 3.2}   # N·m added to Γs

@@ -1,7 +1,7 @@
 #pragma once
-// The stance foot as a rolling arc of radius r (issue 10's `rocker_foot`), fixed to the stance
-// tibia: its centre lies r above the thesis' point foot (the ankle), moved forward by an
-// optional offset; the arc rolls without slipping on the ground line, so the contact point
+// The stance foot as a rolling arc of radius r (`gaitopt diagnose`'s `rocker_foot`), fixed to
+// the stance tibia: its centre lies r above the thesis' point foot (the ankle), moved forward
+// by an optional offset; the arc rolls without slipping on the ground line, so the contact point
 // advances by r per radian the tibia turns forward (α decreases, (1.13)). At r = offset = 0 the
 // model is the thesis' pinned one.
 //
