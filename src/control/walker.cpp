@@ -106,10 +106,7 @@ void Walker::switchPhase(const WalkerState& s) {
   pinnedStateOf(s, leg1_, q, qd);
   const GaitMotion<double>& mo = gait_.motion;
   if (phase_ == WalkerPhase::SingleSupport) {
-    if (!s.contact[side(other(leg1_))]) return;
-    if (phaseProgress(q(0)) < kTouchdownArmed) {
-      return;
-    }
+    if (!s.contact[side(other(leg1_))] || phaseProgress(q(0)) < kTouchdownArmed) return;
     slope_ = groundSlopeBetweenFeet(model_, q);
     leg1_ = other(leg1_);
     ++steps_;
