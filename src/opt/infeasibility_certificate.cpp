@@ -17,9 +17,9 @@ namespace {
 // Levels 0–4 are held this far inside (scaled), as in the optimiser's full stage: the
 // evaluator fails them at g > 0.
 constexpr double kInterior = 1e-6;
-// The elastic variable may go this far below zero: once every row can be met, the solver
-// pushes the point inside them, a strictly feasible start for the optimisation.
-constexpr double kInsideMargin = 1e-4;
+// The elastic variable's lower bound: once every row is met the question is answered (going
+// inside them measured hundreds of SLSQP iterations more).
+constexpr double kLowestViolation = 0.0;
 constexpr double kMaxViolation = 1e3;
 constexpr int kMaxElasticSolves = 4;
 
@@ -178,7 +178,7 @@ std::unique_ptr<NlpProblem> elasticProblem(GaitEvaluationCache& cache, const Vec
   vars.lower.resize(n + 1);
   vars.upper.resize(n + 1);
   vars.initial.resize(n + 1);
-  vars.lower << gait.lower, -kInsideMargin;
+  vars.lower << gait.lower, kLowestViolation;
   vars.upper << gait.upper, kMaxViolation;
   vars.initial << gait.initial, x0(n);
   auto problem = std::make_unique<NlpProblem>(vars);
@@ -208,13 +208,14 @@ ElasticSolve solveElastic(GaitEvaluationCache& cache, const GaitParameters& star
                           BetweenNodes between, int max_iter) {
   const int n = start.size();
   ElasticSolve out;
-  // Start with s at the start's worst row, so that every elastic row holds there.
+  // Start with s at the start's worst row (at least its lower bound), so that every elastic
+  // row holds there.
   const std::unique_ptr<ConstraintSet> rows = levelFiveRows(cache, level5, between);
   out.rows.resize(rows->size());
   const bool started = rows->values(start, out.rows) && out.rows.size() > 0;
   const double s0 = started ? std::max(out.rows.maxCoeff(), 0.0) : 1.0;
   out.x.resize(n + 1);
-  out.x << start, s0 + kInsideMargin;
+  out.x << start, s0;
   // SLSQP: it measured reliable on this problem's ~1200 rows, where Ipopt's interior point
   // stalled with every multiplier near 1/rows. Its quasi-Newton model can stop short of a
   // first-order point: restarted from its own end (a fresh model) while that lowers s.

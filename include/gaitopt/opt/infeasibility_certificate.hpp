@@ -10,8 +10,9 @@
 // is not excluded). Since ∂/∂s of the Lagrangian gives Σ λ_k = 1, each row's multiplier λ_k is
 // its share of the blockage: relaxing that row's bound by ε (scaled) lowers s* by λ_k ε. The
 // multipliers are those of the rows active at the point, by non-negative least squares (SLSQP
-// returns none). When s* ≤ 0 the point meets every row: no evidence, a start for the
-// optimisation (which may still fail the 10× finer check between the nodes).
+// returns none). s is bounded below by 0: s* = 0 means every row can be met (no evidence; the
+// speed's attempts failed for another reason, e.g. the 10× finer check between the nodes,
+// gait/feasibility.hpp, or the solver).
 #include <optional>
 #include <string>
 #include <vector>
