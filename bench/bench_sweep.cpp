@@ -120,21 +120,26 @@ void usage(std::ostream& out) {
 int main(int argc, char** argv) {
   std::string json_path, speeds_text = "0.15:1.05:0.1", config_name = "default.yaml";
   int runs = 3;
+  // Each option but --help takes one value.
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
     if (arg == "--help" || arg == "-h") {
       usage(std::cout);
       return 0;
-    } else if (arg == "--json" && has_value) {
-      json_path = argv[++i];
-    } else if (arg == "--runs" && has_value && parsePositive(argv[i + 1], runs) && runs >= 3) {
-      ++i;
-    } else if (arg == "--speeds" && has_value) {
-      speeds_text = argv[++i];
-    } else if (arg == "--config" && has_value) {
-      config_name = argv[++i];
-    } else {
+    }
+    const char* value = i + 1 < argc ? argv[++i] : nullptr;
+    bool ok = value != nullptr;
+    if (ok && arg == "--json")
+      json_path = value;
+    else if (ok && arg == "--runs")
+      ok = parsePositive(value, runs) && runs >= 3;
+    else if (ok && arg == "--speeds")
+      speeds_text = value;
+    else if (ok && arg == "--config")
+      config_name = value;
+    else
+      ok = false;
+    if (!ok) {
       std::cerr << "bench_sweep: bad argument '" << arg << "'\n";
       usage(std::cerr);
       return 2;

@@ -107,7 +107,7 @@ class Chain {
         if (beyond >= 0) attempt(i, points_[beyond].result.parameters, speeds_[beyond], true);
         if (!optimalPoint(points_[i]) && !tried_default_[i])
           attempt(i, defaultGuess(i), kNaN, false);
-        certify(i);
+        if (!optimalPoint(points_[i])) certify(i);
       }
       sink_.point(points_[i]);
     }
