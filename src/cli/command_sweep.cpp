@@ -111,7 +111,7 @@ void registerSweep(CLI::App& app, int& exit_code) {
       return "v=" + shortNumber(p.point.speed, "%.3f") + " m/s  status " +
              optimizationStatusName(r.status) + "  " +
              progressText(evaluator, r.evaluation, criterion) + "  " +
-             elapsedAndRemaining(p.elapsed_s, p.done, p.total);
+             sweepEvidenceText(p.point) + elapsedAndRemaining(p.elapsed_s, p.done, p.total);
     };
     auto progress = [&](const SweepProgress& p) {
       if (p.free_speed) {

@@ -30,6 +30,13 @@ double parseNumber(const std::string& field, const std::string& what, const std:
   return *v;
 }
 
+// Three significant digits, for the progress line.
+std::string threeDigits(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
 // An empty field for a value not computed.
 std::optional<double> field(bool available, double v) {
   return available ? finiteOrAbsent(v) : std::nullopt;
@@ -58,6 +65,15 @@ double checkSweepRow(const std::vector<std::string>& f, const std::string& where
     throw bad(10, "is not a non-negative integer");
   const std::optional<double> wall = parseDecimal(f[11]);
   if (!wall || *wall < 0.0) throw bad(11, "is not a duration >= 0 s");
+  for (std::size_t c : {12, 14, 16}) {  // min_violation, blocking_value, blocking_multiplier
+    const std::optional<double> v = parseDecimal(f[c]);
+    if (!f[c].empty() && (!v || (c == 16 && *v < 0.0)))
+      throw bad(c, c == 16 ? "is not a multiplier >= 0 (or empty)" : "is not a number (or empty)");
+  }
+  for (std::size_t c : {13, 15})  // blocking_constraint, blocking_unit: names, no quoting
+    if (f[c].find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"
+                               "_ +-^/()") != std::string::npos)
+      throw bad(c, "is not a constraint name or unit (letters, digits, _ +-^/() and spaces)");
   return *speed;
 }
 
@@ -113,7 +129,8 @@ Shard parseShard(const std::string& text) {
 }
 
 const char* const kSweepCsvHeader =
-    "speed,status,C_Gamma,C_E,W,C_frott,CoT,step_length,T_SS,T_DS,iterations,wall_time_s";
+    "speed,status,C_Gamma,C_E,W,C_frott,CoT,step_length,T_SS,T_DS,iterations,wall_time_s,"
+    "min_violation,blocking_constraint,blocking_value,blocking_unit,blocking_multiplier";
 
 std::string sweepCsvRow(const GaitEvaluator& ev, const SweepPoint& p) {
   const GaitEvaluation<double>& e = p.result.evaluation;
@@ -126,13 +143,31 @@ std::string sweepCsvRow(const GaitEvaluator& ev, const SweepPoint& p) {
   row.number(field(criteria, costOfTransport(ev.model(), e.C_E)));
   row.number(field(true, p.result.parameters[kStepLength])).number(field(timing, e.T_SS));
   row.number(field(true, p.result.parameters[kTDS])).integer(p.total_iterations);
-  return row.number(p.total_wall_time_s).str();
+  row.number(p.total_wall_time_s);
+  // The elastic problem's evidence: s* whenever it ran, the blocking row of a certificate.
+  const InfeasibilityCertificate* c = p.certificate ? &*p.certificate : nullptr;
+  row.number(field(c != nullptr, c ? c->min_violation : 0.0));
+  if (!c || !c->infeasible()) return row.empty().empty().empty().empty().str();
+  const BlockingConstraint& b = c->blocking.front();
+  return row.text(b.name).number(b.value).text(b.unit).number(b.multiplier).str();
 }
 
 std::string sweepCsv(const GaitEvaluator& ev, const std::vector<SweepPoint>& points) {
   std::string out = std::string(kSweepCsvHeader) + "\n";
   for (const SweepPoint& p : points) out += sweepCsvRow(ev, p) + "\n";
   return out;
+}
+
+std::string sweepEvidenceText(const SweepPoint& p) {
+  if (!p.certificate || isOptimal(p.result)) return "";
+  const InfeasibilityCertificate& c = *p.certificate;
+  if (!c.infeasible())
+    return c.min_violation <= kFeasibilityTolerance
+               ? "rows can be met: not shown infeasible  "
+               : "no certificate (elastic problem not first-order)  ";
+  const BlockingConstraint& b = c.blocking.front();
+  return "blocked by " + b.name + " (+" + threeDigits(b.value) + " " + b.unit +
+         ", multiplier " + threeDigits(b.multiplier) + ")  ";
 }
 
 std::string mergeSweepCsvs(const std::vector<std::string>& texts,

@@ -220,7 +220,7 @@ TEST_CASE("bad input: YAML documents, control characters, numbers as written",
 
 TEST_CASE("bad input: sweep-merge reads strictly typed rows", "[reliability]") {
   const std::string header = std::string(gaitopt::kSweepCsvHeader) + "\n";
-  const std::string good = "0.5,optimal,9122.6,180.1,130.2,60.3,0.422,0.309,0.58,0.042,118,0.27";
+  const std::string good = "0.5,optimal,9122.6,180.1,130.2,60.3,0.422,0.309,0.58,0.042,118,0.27,,,,,";
   const auto merge = [&](const std::string& row) {
     return gaitopt::mergeSweepCsvs({header + row + "\r\n"}, {"s/sweep.csv"});
   };
@@ -229,17 +229,17 @@ TEST_CASE("bad input: sweep-merge reads strictly typed rows", "[reliability]") {
   const auto bad = [&](const std::string& row, const std::string& problem) {
     CHECK_THROWS_WITH(merge(row), Contains("s/sweep.csv:2: column " + problem));
   };
-  bad("0.5,optimal,abc,180.1,130.2,60.3,0.422,0.309,0.58,0.042,118,0.27", "C_Gamma: 'abc'");
-  bad("0.5,happy,9122.6,180.1,130.2,60.3,0.422,0.309,0.58,0.042,118,0.27", "status: 'happy'");
-  bad("-0.5,optimal,9122.6,180.1,130.2,60.3,0.422,0.309,0.58,0.042,118,0.27", "speed: '-0.5'");
-  bad("0.5,optimal,9122.6,180.1,130.2,60.3,0.422,0.309,-0.58,0.042,118,0.27", "T_SS: '-0.58'");
-  bad("0.5,optimal,9122.6,180.1,130.2,60.3,0.422,0.309,0.58,0.042,1.5,0.27", "iterations: '1.5'");
-  bad("0.5,optimal,inf,180.1,130.2,60.3,0.422,0.309,0.58,0.042,118,0.27", "C_Gamma: 'inf'");
+  bad("0.5,optimal,abc,180.1,130.2,60.3,0.422,0.309,0.58,0.042,118,0.27,,,,,", "C_Gamma: 'abc'");
+  bad("0.5,happy,9122.6,180.1,130.2,60.3,0.422,0.309,0.58,0.042,118,0.27,,,,,", "status: 'happy'");
+  bad("-0.5,optimal,9122.6,180.1,130.2,60.3,0.422,0.309,0.58,0.042,118,0.27,,,,,", "speed: '-0.5'");
+  bad("0.5,optimal,9122.6,180.1,130.2,60.3,0.422,0.309,-0.58,0.042,118,0.27,,,,,", "T_SS: '-0.58'");
+  bad("0.5,optimal,9122.6,180.1,130.2,60.3,0.422,0.309,0.58,0.042,1.5,0.27,,,,,", "iterations: '1.5'");
+  bad("0.5,optimal,inf,180.1,130.2,60.3,0.422,0.309,0.58,0.042,118,0.27,,,,,", "C_Gamma: 'inf'");
 
   // The CLI: exit 2, nothing written; a sweep.csv that is a directory is named as such.
   const fs::path shard = scratch().fresh("shard");
   fs::create_directories(shard);
-  std::ofstream(shard / "sweep.csv") << header << "0.5,happy,1,1,1,1,0.002,0.3,0.5,0.1,10,0.1\n";
+  std::ofstream(shard / "sweep.csv") << header << "0.5,happy,1,1,1,1,0.002,0.3,0.5,0.1,10,0.1,,,,,\n";
   const fs::path odd = scratch().fresh("shard_dir");
   fs::create_directories(odd / "sweep.csv");
   const std::string out = scratch().fresh("out_merge");

@@ -40,7 +40,8 @@ TEST_CASE("gaitopt sweep and sweep-merge: outputs, shards, exit codes", "[sweep]
     const std::vector<std::string> csv = lines(readFile(out + "/sweep.csv"));
     REQUIRE(csv.size() == 4);
     CHECK(csv[0] ==
-          "speed,status,C_Gamma,C_E,W,C_frott,CoT,step_length,T_SS,T_DS,iterations,wall_time_s");
+          "speed,status,C_Gamma,C_E,W,C_frott,CoT,step_length,T_SS,T_DS,iterations,wall_time_s,"
+          "min_violation,blocking_constraint,blocking_value,blocking_unit,blocking_multiplier");
     for (std::size_t i = 1; i < csv.size(); ++i) CHECK_THAT(csv[i], Contains(",optimal,"));
     for (const char* v : {"v0.400", "v0.500", "v0.600"})
       for (const char* f : {"summary.json", "gait.yaml", "trajectory.csv"}) {

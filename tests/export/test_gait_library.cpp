@@ -25,7 +25,7 @@ std::string sweepDir(ScratchDir& scratch,
   std::ofstream csv(dir / "sweep.csv");
   csv << kSweepCsvHeader << "\n";
   for (const auto& [speed, status, f] : points) {
-    csv << speed << "," << status << ",1,1,1,1,0.002,0.3,0.5,0.04,10,1\n";
+    csv << speed << "," << status << ",1,1,1,1,0.002,0.3,0.5,0.04,10,1,,,,,\n";
     const std::filesystem::path folder = dir / sweepFolderName(speed, 3);
     std::filesystem::create_directories(folder);
     std::ofstream(folder / "gait.yaml") << gaitYaml(f->gait.robot_path, f->gait.parameters,

@@ -45,7 +45,7 @@ TEST_CASE("bad input: reader resource limits", "[reliability]") {
   // sweep.csv: rows and line length.
   std::string csv = std::string(gaitopt::kSweepCsvHeader) + "\n";
   for (int i = 1; i <= 10001; ++i)
-    csv += std::to_string(i * 0.0009) + ",optimal,1,1,1,1,0.002,0.3,0.5,0.1,10,0.1\n";
+    csv += std::to_string(i * 0.0009) + ",optimal,1,1,1,1,0.002,0.3,0.5,0.1,10,0.1,,,,,\n";
   CHECK_THROWS_WITH(gaitopt::mergeSweepCsvs({csv}, {"big.csv"}),
                     Contains("big.csv:10002: more than 10000 rows (limit)"));
   CHECK_THROWS_WITH(

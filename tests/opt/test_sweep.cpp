@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gaitopt/opt/initial_guess.hpp"
+#include "gaitopt/io/csv_table.hpp"
 #include "gaitopt/io/sweep_file.hpp"
 #include "test_files.hpp"
 #include "test_gait_support.hpp"
@@ -188,9 +189,9 @@ TEST_CASE("sweepSpeeds: two threaded chains are deterministic and equal the two 
 
 TEST_CASE("mergeSweepCsvs sorts rows and rejects duplicates and foreign headers", "[sweep]") {
   const std::string h = std::string(gaitopt::kSweepCsvHeader) + "\n";
-  const std::string a = h + "0.5,optimal,1,2,3,4,0.005,0.3,0.5,0.04,10,0.1\n";
-  const std::string b = h + "0.40000000000000002,optimal,1,2,3,4,0.005,0.3,0.5,0.04,10,0.1\n" +
-                        "0.6,infeasible,,,,,,0.3,,0.04,10,0.1\n";
+  const std::string a = h + "0.5,optimal,1,2,3,4,0.005,0.3,0.5,0.04,10,0.1,,,,,\n";
+  const std::string b = h + "0.40000000000000002,optimal,1,2,3,4,0.005,0.3,0.5,0.04,10,0.1,,,,,\n" +
+                        "0.6,infeasible,,,,,,0.3,,0.04,10,0.1,,,,,\n";
   const std::vector<std::string> merged = lines(gaitopt::mergeSweepCsvs({a, b}, {"a", "b"}));
   REQUIRE(merged.size() == 4);
   CHECK(merged[0] == gaitopt::kSweepCsvHeader);
@@ -204,4 +205,58 @@ TEST_CASE("mergeSweepCsvs sorts rows and rejects duplicates and foreign headers"
   CHECK(gaitopt::sweepFolderName(0.5, 3) == "v0.500");
   CHECK(gaitopt::sweepFolderDecimals({0.4, 0.5}) == 3);
   CHECK(gaitopt::sweepFolderDecimals({0.5, 0.5001}) == 4);
+}
+
+TEST_CASE("sweep.csv: the elastic problem's columns and progress text", "[sweep]") {
+  const std::vector<std::string> header = gaitopt::splitFields(gaitopt::kSweepCsvHeader);
+  REQUIRE(header.size() == 17);
+  CHECK(std::vector<std::string>(header.end() - 5, header.end()) ==
+        std::vector<std::string>{"min_violation", "blocking_constraint", "blocking_value",
+                                 "blocking_unit", "blocking_multiplier"});
+  SweepPoint p;
+  p.speed = 1.05;
+  p.attempts = 1;
+  p.result.status = gaitopt::OptimizationStatus::Infeasible;
+  p.result.parameters = gaitopt::defaultInitialGuess(evaluator().model(), 1.05);
+  p.result.evaluation = evaluator().evaluate(p.result.parameters);
+  // Without the elastic problem: five empty fields, no text.
+  std::vector<std::string> row = gaitopt::splitFields(gaitopt::sweepCsvRow(evaluator(), p));
+  REQUIRE(row.size() == 17);
+  for (std::size_t c = 12; c < 17; ++c) CHECK(row[c].empty());
+  CHECK(gaitopt::sweepEvidenceText(p).empty());
+
+  // Rows met: s* only, "not shown infeasible".
+  gaitopt::InfeasibilityCertificate c;
+  c.min_violation = -2e-5;
+  p.certificate = c;
+  row = gaitopt::splitFields(gaitopt::sweepCsvRow(evaluator(), p));
+  CHECK(std::stod(row[12]) == -2e-5);
+  CHECK(row[13].empty());
+  CHECK_THAT(gaitopt::sweepEvidenceText(p), Contains("not shown infeasible"));
+
+  // A certificate: its largest share.
+  c.converged = true;
+  c.min_violation = 0.025;
+  c.blocking = {{0, "joint_limits_ss knee 2 upper at SS node 16", 0.353, 0.025, "rad"},
+                {1, "clearance at SS node 15", 0.2, 0.001, "m"}};
+  p.certificate = c;
+  const std::string text = gaitopt::sweepCsvRow(evaluator(), p);
+  row = gaitopt::splitFields(text);
+  CHECK(row[13] == "joint_limits_ss knee 2 upper at SS node 16");
+  CHECK(std::stod(row[14]) == 0.025);
+  CHECK(row[15] == "rad");
+  CHECK(std::stod(row[16]) == 0.353);
+  CHECK(gaitopt::sweepEvidenceText(p) ==
+        "blocked by joint_limits_ss knee 2 upper at SS node 16 (+0.025 rad, multiplier 0.353)  ");
+  // The row reads back; a name with a quote or a negative multiplier does not.
+  const std::string h = std::string(gaitopt::kSweepCsvHeader) + "\n";
+  CHECK(lines(gaitopt::mergeSweepCsvs({h + text + "\n"}, {"s"}))[1] == text);
+  std::string quoted = text;
+  quoted.replace(quoted.find("knee 2"), 6, "knee\"2");
+  CHECK_THROWS_WITH(gaitopt::mergeSweepCsvs({h + quoted + "\n"}, {"s"}),
+                    Contains("column blocking_constraint"));
+  std::string negative = text;
+  negative.replace(negative.rfind(",0.35"), 5, ",-0.35");
+  CHECK_THROWS_WITH(gaitopt::mergeSweepCsvs({h + negative + "\n"}, {"s"}),
+                    Contains("column blocking_multiplier"));
 }

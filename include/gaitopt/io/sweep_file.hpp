@@ -29,6 +29,13 @@ extern const char* const kSweepCsvHeader;  // speed,status,C_Gamma,...,wall_time
 std::string sweepCsvRow(const GaitEvaluator& evaluator, const SweepPoint& point);
 std::string sweepCsv(const GaitEvaluator& evaluator, const std::vector<SweepPoint>& points);
 
+// What the elastic problem (opt/infeasibility_certificate.hpp) showed for a speed without an
+// optimum, for the progress line: "blocked by joint_limits_ss knee 2 upper at SS node 16
+// (+0.0249 rad, multiplier 0.353)  ", "rows can be met: not shown infeasible  ", "no
+// certificate (elastic problem not first-order)  "; empty for an optimal speed or one
+// without the elastic problem.
+std::string sweepEvidenceText(const SweepPoint& point);
+
 // Concatenation of several sweep.csv texts (`names` label them in messages), rows sorted by
 // speed. Strict: every column typed and range-checked (speed in (0, 10] m/s, a known status,
 // numbers or empty fields, durations >= 0, an integer iteration count); CRLF line ends, blank

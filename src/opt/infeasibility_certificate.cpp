@@ -1,0 +1,297 @@
+#include "gaitopt/opt/infeasibility_certificate.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <Eigen/QR>
+
+#include "gaitopt/gait/feasibility.hpp"
+#include "gaitopt/math/nonnegative_least_squares.hpp"
+#include "gaitopt/opt/evaluation_cache.hpp"
+#include "gaitopt/opt/gait_problem.hpp"
+#include "gaitopt/opt/nlp_solver.hpp"
+
+namespace gaitopt {
+namespace {
+
+// Levels 0–4 are held this far inside (scaled), as in the optimiser's full stage: the
+// evaluator fails them at g > 0.
+constexpr double kInterior = 1e-6;
+// The elastic variable's lower bound: once every row is met the question is answered (going
+// inside them measured hundreds of SLSQP iterations more).
+constexpr double kLowestViolation = 0.0;
+constexpr double kMaxViolation = 1e3;
+constexpr int kMaxElasticSolves = 4;
+
+// A constraint set of the gait parameters (the first n variables) minus `weight` times the
+// elastic variable (the last one): g(p) − weight · s.
+class Elastic : public ConstraintSet {
+ public:
+  Elastic(std::unique_ptr<ConstraintSet> inner, int n, double weight)
+      : inner_(std::move(inner)), n_(n), weight_(weight) {}
+  std::string name() const override { return inner_->name(); }
+  int size() const override { return inner_->size(); }
+  void bounds(Eigen::Ref<VectorX> lower, Eigen::Ref<VectorX> upper) const override {
+    inner_->bounds(lower, upper);
+  }
+  bool values(const VectorX& x, Eigen::Ref<VectorX> g) override {
+    if (!inner_->values(x.head(n_), g)) return false;
+    g.array() -= weight_ * x(n_);
+    return true;
+  }
+  bool jacobian(const VectorX& x, Eigen::Ref<MatrixX> jac) override {
+    if (!inner_->jacobian(x.head(n_), jac.leftCols(n_))) return false;
+    jac.col(n_).setConstant(-weight_);
+    return true;
+  }
+
+ private:
+  std::unique_ptr<ConstraintSet> inner_;
+  int n_;
+  double weight_;
+};
+
+// The elastic variable itself.
+class ElasticCost : public CostTerm {
+ public:
+  explicit ElasticCost(int n) : n_(n) {}
+  std::string name() const override { return "violation"; }
+  bool value(const VectorX& x, double& f) override {
+    f = x(n_);
+    return true;
+  }
+  bool gradient(const VectorX&, Eigen::Ref<VectorX> grad) override {
+    grad.setZero();
+    grad(n_) = 1.0;
+    return true;
+  }
+
+ private:
+  int n_;
+};
+
+std::vector<int> levelFiveEntries(const ConstraintLayout& layout) {
+  std::vector<int> out;
+  for (int k = 0; k < layout.size(); ++k)
+    if (layout.levelOf(k) == 5) out.push_back(k);
+  return out;
+}
+
+std::unique_ptr<ConstraintSet> levelFiveRows(GaitEvaluationCache& cache,
+                                             const std::vector<int>& entries,
+                                             BetweenNodes between) {
+  return makeHierarchyConstraints(cache, entries, kInterior, 0.0, between);
+}
+
+// The actuated joints in the order of Γ* and of the joint-limit angles (δ1 … δ4).
+constexpr const char* kJointNames[4] = {"knee 1", "hip 1", "hip 2", "knee 2"};
+
+// "knee 2 upper", "foot 2 +R_x", … : which row of a node's block `sub` is.
+std::string subRowName(int group, int sub) {
+  switch (group) {
+    case kTorqueSS: case kTorqueDS: case kJointLimitsSS: case kJointLimitsDS:
+      return std::string(" ") + kJointNames[sub / 2] + (sub % 2 == 0 ? " upper" : " lower");
+    case kFrictionConeSS: case kFrictionConeDS:
+      return " foot " + std::to_string(sub / 2 + 1) + (sub % 2 == 0 ? " +R_x" : " -R_x");
+    case kNormalForceDS: return " foot " + std::to_string(sub + 1);
+    default: return "";
+  }
+}
+
+// Rows within this (scaled) of their bound count as active at the elastic optimum.
+constexpr double kActiveTol = 1e-4;
+// A least-squares multiplier vector with a larger relative stationarity residual is no
+// certificate.
+constexpr double kStationarityTol = 1e-3;
+
+// The multipliers λ ≥ 0 of the rows active at x (the equality rows' of either sign), by
+// non-negative least squares on ∇f + Jᵀλ + μ = 0 (the other rows' zero; μ those of the
+// variables at a bound), each variable scaled by its bound range; false when x is not a
+// first-order point (relative residual above kStationarityTol).
+bool activeMultipliers(NlpProblem& problem, const VectorX& x, VectorX& lambda) {
+  VectorX g, lower, upper, grad;
+  MatrixX jac;
+  if (!problem.constraints(x, g) || !problem.constraintJacobian(x, jac) ||
+      !problem.costGradient(x, grad))
+    return false;
+  problem.constraintBounds(lower, upper);
+  const VariableSet& v = problem.variables();
+  const VectorX D = (v.upper - v.lower).cwiseMin(1.0).cwiseMax(1e-3);
+  // Columns: each active row, and the negated equality rows (a free multiplier λ = λ⁺ − λ⁻).
+  std::vector<std::pair<int, double>> columns;
+  for (int i = 0; i < g.size(); ++i) {
+    if (lower(i) == upper(i)) columns.push_back({i, -1.0});
+    if (lower(i) == upper(i) || g(i) >= upper(i) - kActiveTol) columns.push_back({i, 1.0});
+  }
+  // And the variables at a bound (their multipliers are not reported).
+  std::vector<std::pair<int, double>> bounds;
+  for (int j = 0; j < x.size(); ++j) {
+    if (x(j) <= v.lower(j) + kActiveTol * D(j)) bounds.push_back({j, -1.0});
+    if (x(j) >= v.upper(j) - kActiveTol * D(j)) bounds.push_back({j, 1.0});
+  }
+  MatrixX A = MatrixX::Zero(x.size(), columns.size() + bounds.size());
+  for (std::size_t j = 0; j < columns.size(); ++j)
+    A.col(j) = columns[j].second * jac.row(columns[j].first).transpose().cwiseProduct(D);
+  for (std::size_t j = 0; j < bounds.size(); ++j)
+    A(bounds[j].first, columns.size() + j) = bounds[j].second * D(bounds[j].first);
+  const VectorX gf = grad.cwiseProduct(D);
+  const NnlsResult nnls = solveNonnegativeLeastSquares(A, -gf);
+  lambda = VectorX::Zero(g.size());
+  for (std::size_t j = 0; j < columns.size(); ++j)
+    lambda(columns[j].first) += columns[j].second * nnls.x(j);
+  return nnls.residual <= kStationarityTol * gf.norm();
+}
+
+}  // namespace
+
+int constraintGroupOf(const ConstraintLayout& layout, int entry) {
+  for (int id = 0; id < kNumConstraintGroups; ++id)
+    if (entry >= layout[id].offset && entry < layout[id].offset + layout[id].count) return id;
+  return -1;
+}
+
+std::string constraintRowName(const ConstraintLayout& layout, int entry) {
+  const int id = constraintGroupOf(layout, entry);
+  if (id < 0) return "entry " + std::to_string(entry);
+  const ConstraintGroup& g = layout[id];
+  if (g.phase == ConstraintPhase::None) return g.name;
+  const int node = (entry - g.offset) / g.per_point + g.first_point;
+  return g.name + subRowName(id, (entry - g.offset) % g.per_point) + " at " +
+         (g.phase == ConstraintPhase::SingleSupport ? "SS" : "DS") + " node " +
+         std::to_string(node);
+}
+
+namespace {
+
+// The elastic problem over (p, s) started at x0 = (p0, s0).
+std::unique_ptr<NlpProblem> elasticProblem(GaitEvaluationCache& cache, const VectorX& x0,
+                                           const std::vector<int>& level5,
+                                           const std::optional<double>& speed,
+                                           BetweenNodes between) {
+  const GaitEvaluator& ev = cache.evaluator();
+  const int n = static_cast<int>(x0.size()) - 1;
+  const VariableSet gait =
+      gaitVariables(ev.model(), GaitParameters(x0.head(n)), ev.options().parameterisation);
+  VariableSet vars;
+  vars.names = gait.names;
+  vars.names.push_back("violation");
+  vars.lower.resize(n + 1);
+  vars.upper.resize(n + 1);
+  vars.initial.resize(n + 1);
+  vars.lower << gait.lower, kLowestViolation;
+  vars.upper << gait.upper, kMaxViolation;
+  vars.initial << gait.initial, x0(n);
+  auto problem = std::make_unique<NlpProblem>(vars);
+  problem->addCost(std::make_unique<ElasticCost>(n));
+  problem->addConstraints(std::make_unique<Elastic>(
+      makeHierarchyConstraints(cache, hierarchyEntries(ev.layout(), 4), kInterior, 0.0, between),
+      n, 0.0));
+  problem->addConstraints(
+      std::make_unique<Elastic>(levelFiveRows(cache, level5, between), n, 1.0));
+  if (speed)
+    problem->addConstraints(
+        std::make_unique<Elastic>(makeSpeedConstraint(cache, *speed), n, 0.0));
+  return problem;
+}
+
+// One elastic problem solved from `start`: the point, the multipliers of its rows (when
+// first-order), and the worst scaled level-5 row there.
+struct ElasticSolve {
+  VectorX x, lambda, rows;
+  bool stationary = false;
+  int iterations = 0;
+  double worst = kMaxViolation;
+};
+
+ElasticSolve solveElastic(GaitEvaluationCache& cache, const GaitParameters& start,
+                          const std::vector<int>& level5, const std::optional<double>& speed,
+                          BetweenNodes between, int max_iter) {
+  const int n = start.size();
+  ElasticSolve out;
+  // Start with s at the start's worst row (at least its lower bound), so that every elastic
+  // row holds there.
+  const std::unique_ptr<ConstraintSet> rows = levelFiveRows(cache, level5, between);
+  out.rows.resize(rows->size());
+  const bool started = rows->values(start, out.rows) && out.rows.size() > 0;
+  const double s0 = started ? std::max(out.rows.maxCoeff(), 0.0) : 1.0;
+  out.x.resize(n + 1);
+  out.x << start, s0;
+  // SLSQP: it measured reliable on this problem's ~1200 rows, where Ipopt's interior point
+  // stalled with every multiplier near 1/rows. Its quasi-Newton model can stop short of a
+  // first-order point: restarted from its own end (a fresh model) while that lowers s.
+  NlpSettings settings;
+  settings.max_iter = max_iter;
+  settings.tol = 1e-10;
+  settings.print_every = 0;
+  for (int solve = 0; solve < kMaxElasticSolves && !out.stationary; ++solve) {
+    const std::unique_ptr<NlpProblem> problem =
+        elasticProblem(cache, out.x, level5, speed, between);
+    const NlpSolution sol = solveWithNlopt(*problem, settings, NloptMethod::Slsqp);
+    out.iterations += sol.iterations;
+    const bool lower = sol.x(n) < out.x(n) - kActiveTol;
+    out.x = sol.x;
+    out.stationary =
+        sol.status == NlpStatus::Solved && activeMultipliers(*problem, out.x, out.lambda);
+    if (!lower && solve > 0) break;
+  }
+  const bool computed = rows->values(out.x.head(n), out.rows);
+  out.worst = computed && out.rows.size() > 0 ? out.rows.maxCoeff() : kMaxViolation;
+  out.stationary = out.stationary && computed;
+  return out;
+}
+
+}  // namespace
+
+InfeasibilityCertificate minimiseViolation(const GaitEvaluator& ev, const GaitParameters& start,
+                                           const std::optional<double>& speed, int max_iter) {
+  const auto t0 = std::chrono::steady_clock::now();
+  // Constraints only: the criteria's finer SS grid is not needed.
+  const GaitEvaluator solving = ev.withCriteriaRefinement(1);
+  GaitEvaluationCache cache(solving);
+  const ConstraintLayout& layout = ev.layout();
+  const std::vector<int> level5 = levelFiveEntries(layout);
+  const int n = start.size();
+
+  // At the nodes first: smooth rows (no maxima with kinks, where SLSQP measured stuck), and
+  // a step that cannot meet its rows at the nodes cannot meet them between either. When they
+  // can be met, the rows between the nodes too, from there: a feasible start, or the evidence
+  // between the nodes.
+  ElasticSolve e = solveElastic(cache, start, level5, speed, BetweenNodes::None, max_iter);
+  bool between = false;
+  int iterations = e.iterations;
+  if (!(e.stationary && e.worst > kFeasibilityTolerance)) {
+    e = solveElastic(cache, GaitParameters(e.x.head(n)), level5, speed, BetweenNodes::Both,
+                     max_iter);
+    iterations += e.iterations;
+    between = true;
+  }
+
+  InfeasibilityCertificate c;
+  c.x = GaitParameters(e.x.head(n));
+  c.iterations = iterations;
+  c.feasible = feasibilityVerdict(ev, c.x, ev.evaluate(c.x), speed).feasible;
+  c.converged = e.stationary && !c.feasible;
+  c.min_violation = e.worst;
+  const int first = static_cast<int>(hierarchyEntries(layout, 4).size());
+  // Rows that can all be met block nothing.
+  const bool blocked = c.converged && c.min_violation > kFeasibilityTolerance;
+  for (int i = 0; blocked && i < static_cast<int>(level5.size()); ++i) {
+    if (e.lambda(first + i) < kBlockingMultiplier) continue;
+    const int k = level5[i];
+    BlockingConstraint b;
+    b.entry = k;
+    b.name = constraintRowName(layout, k) + (between ? " (between nodes)" : "");
+    b.unit = layout[constraintGroupOf(layout, k)].unit;
+    b.multiplier = e.lambda(first + i);
+    b.value = e.rows(i) * constraintScale(layout, ev.model(), k);
+    c.blocking.push_back(b);
+  }
+  std::sort(c.blocking.begin(), c.blocking.end(),
+            [](const BlockingConstraint& a, const BlockingConstraint& b) {
+              return a.multiplier > b.multiplier;
+            });
+  c.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return c;
+}
+
+}  // namespace gaitopt
