@@ -133,7 +133,7 @@ Vec4 ssControl(const WalkingController& s, const Vec5& q, const Vec5& qd, Contro
   };
   const PdGains k = pdGains(s.options);
   const TimedOffset& o = s.options.timed_offset;
-  const Vec4 v_d = -k.kp * e.error - k.kd * (B * qd - o.rate) + o.acceleration;
+  const Vec4 v_d = -k.kp * e.error - k.kd * (B * qd) + (k.kd * o.rate + o.acceleration);
   if (!s.options.torque_limits) return response(v_d).gamma_star;
   const Projected p = projectInputs(response, v_d, Vec4::Ones(), torqueLimits(s, qd),
                                     contactLimits(s), false);

@@ -234,15 +234,21 @@ LeanRun leanAfterOneStep(const ShippedGait& g, WalkerOptions o, double speed_rat
   return r;
 }
 
+// The walker's options with the lean's PI gains 0.1 and 0.05 rad per relative speed error.
+WalkerOptions leanOptions(const ShippedGait& g, double apex_energy_fraction) {
+  WalkerOptions o = walkerOptionsFor(g.gait.options, g.model);
+  o.lean_gain = 0.1;
+  o.lean_integral_gain = 0.05;
+  o.apex_energy_fraction = apex_energy_fraction;
+  return o;
+}
+
 }  // namespace
 
 TEST_CASE("Walker leans the trunk back after a fast step, blended in time from the SS start",
           "[control][walker]") {
   const ShippedGait g("configs/gait/default_impact.yaml");
-  WalkerOptions o = walkerOptionsFor(g.gait.options, g.model);
-  o.lean_gain = 0.1;
-  o.lean_integral_gain = 0.05;
-  o.apex_energy_fraction = 0.0;  // the lean's energy bound is checked below
+  WalkerOptions o = leanOptions(g, 0.0);  // the lean's energy bound is checked below
   // A step at twice the gait's speed: relative error +1, lean 0.1 + 0.05 rad. The output
   // δ2 − (δ_d2 − lean) of a state on the planned constraints is the lean (pitch = α + δ1 − δ2).
   const LeanRun fast = leanAfterOneStep(g, o, 2.0);
@@ -263,29 +269,22 @@ TEST_CASE("Walker bounds the lean back by the energy the next single support nee
   // This impact gait passes its apex with a tenth of its start energy: a lean back of 0.15 rad
   // would take more than half of it.
   const ShippedGait g("configs/gait/default_impact.yaml");
-  WalkerOptions o = walkerOptionsFor(g.gait.options, g.model);
-  o.lean_gain = 0.1;
-  o.lean_integral_gain = 0.05;
   double previous = 0.15;
   for (double fraction : {0.5, 0.8}) {
-    o.apex_energy_fraction = fraction;
-    const double lean = leanAfterOneStep(g, o, 2.0).error_after_blend;
+    const double lean = leanAfterOneStep(g, leanOptions(g, fraction), 2.0).error_after_blend;
     CHECK(lean > 0.0);
     CHECK(lean < previous - 0.01);
     previous = lean;
   }
-  // A slow step's lean forward is not bounded.
-  o.max_lean = 0.02;
-  CHECK(leanAfterOneStep(g, o, 0.5).error_after_blend == Approx(-0.02).margin(1e-12));
+  // A slow step's lean forward is not bounded: 0.1 × 0.5 + 0.05 × 0.5.
+  CHECK(leanAfterOneStep(g, leanOptions(g, 0.8), 0.5).error_after_blend ==
+        Approx(-0.075).margin(1e-12));
 }
 
 TEST_CASE("Walker with a double support leans only once the DS rate correction is at its bound",
           "[control][walker]") {
   const DefaultGait g;
-  WalkerOptions o = walkerOptionsFor(g.gait.options, g.model);
-  o.lean_gain = 0.1;
-  o.lean_integral_gain = 0.05;
-  o.apex_energy_fraction = 0.0;
+  WalkerOptions o = leanOptions(g, 0.0);
   o.max_rate_correction = 0.15;
   // +50 % within the rate correction's reach (0.2 × 0.5 < 0.15): the DS alone regulates.
   CHECK(leanAfterOneStep(g, o, 1.5).error_after_blend == Approx(0.0).margin(1e-12));
