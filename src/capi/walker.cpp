@@ -54,6 +54,7 @@ gaitopt::WalkerOptions walkerOptions(const char* text, gaitopt::WalkerOptions o)
   positive("max_lean", o.max_lean);
   non_negative("slope_compensation", o.slope_compensation);
   non_negative("slope_deadband", o.slope_deadband);
+  non_negative("apex_energy_fraction", o.apex_energy_fraction);
   if (m.has("ds_control")) {
     const std::string c = m.string("ds_control");
     if (c != "cubic" && c != "time_optimal")

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "gaitopt/gait/constraints/torque_envelope.hpp"
@@ -19,13 +20,13 @@ Stance other(Stance s) { return s == Stance::Left ? Stance::Right : Stance::Left
 // (before, the foot just lifted off may still touch the ground).
 constexpr double kTouchdownArmed = 0.5;
 
-// The trunk lean [rad] per radian of ground slope that keeps the centre of mass's horizontal
-// offset from the stance foot, and so the gravity torque that drives the zero dynamics, at its
-// planned value: the slope turns the step's geometry by γ about the stance foot, which moves the
-// centre of mass forward by z_c γ downhill; the lean moves it by ∂x_c/∂pitch per radian
-// (pitch = α + δ1 − δ2: ∂/∂pitch = −∂/∂δ2 with α, δ1, δ3, δ4 kept). Evaluated on the
-// controller's model at the gait's mid single support.
-double slopeLeanRatio(const Model& model, const GaitMotion<double>& mo) {
+// How a trunk lean moves the centre of mass at the gait's mid single support, on the
+// controller's model: its height z_c and ∂x_c/∂pitch (pitch = α + δ1 − δ2: ∂/∂pitch = −∂/∂δ2
+// with α, δ1, δ3, δ4 kept).
+struct LeanLever {
+  double height, shift;  // z_c [m], ∂x_c/∂pitch [m/rad]
+};
+LeanLever leanLever(const Model& model, const GaitMotion<double>& mo) {
   Vec5 q;
   q(0) = 0.5 * (mo.q_iSS(0) + mo.alpha_fSS);
   for (int j = 0; j < 4; ++j) q(j + 1) = mo.ss_path[j](q(0)).value;
@@ -33,7 +34,15 @@ double slopeLeanRatio(const Model& model, const GaitMotion<double>& mo) {
   constexpr double h = 1e-6;
   const Vec2 com = pinnedTerms(model, q, zero).com;
   const double x_back = pinnedTerms(model, Vec5(q + h * Vec5::Unit(2)), zero).com(0);
-  return -com(1) / ((com(0) - x_back) / h);  // lean = ratio × (−γ): back downhill
+  return {com(1), (com(0) - x_back) / h};
+}
+
+// The trunk lean [rad] per radian of ground slope that keeps the centre of mass's horizontal
+// offset from the stance foot, and so the gravity torque that drives the zero dynamics, at its
+// planned value: the slope turns the step's geometry by γ about the stance foot, which moves the
+// centre of mass forward by z_c γ downhill; the lean moves it by ∂x_c/∂pitch per radian.
+double slopeLeanRatio(const LeanLever& l) {
+  return -l.height / l.shift;  // lean = ratio × (−γ): back downhill
 }
 
 }  // namespace
@@ -70,9 +79,13 @@ Walker::Walker(Model model, GaitEvaluation<double> gait, const Parameterisation&
     : model_(std::move(model)),
       gait_(std::move(gait)),
       double_support_(par.hasDoubleSupport()),
-      options_(options) {
+      options_(options),
+      apex_(model_, gait_.motion) {
   if (!gait_.motion_computed) throw std::invalid_argument("the gait has no motion");
-  slope_lean_ratio_ = slopeLeanRatio(model_, gait_.motion);
+  const LeanLever lever = leanLever(model_, gait_.motion);
+  slope_lean_ratio_ = slopeLeanRatio(lever);
+  start_alpha_ = gait_.motion.q_iSS(0);
+  lean_torque_ = model_.total_mass * model_.gravity * lever.shift;
 }
 
 WalkerState Walker::initialState() const {
@@ -109,15 +122,17 @@ void Walker::switchPhase(const WalkerState& s) {
     if (!s.contact[side(other(leg1_))] || phaseProgress(q(0)) < kTouchdownArmed) return;
     slope_ = groundSlopeBetweenFeet(model_, q);
     leg1_ = other(leg1_);
+    pinnedStateOf(s, leg1_, q, qd);
+    // The next single support starts at α_iSS, or where the new stance leg already is.
+    start_alpha_ = phaseProgress(q(0)) > 0.0 ? q(0) : mo.q_iSS(0);
     ++steps_;
     phase_start_ = s.t;
     const double error = stepSpeedError(s);
     const double scale = rateScale(error);
-    regulateLean(error);
+    regulateLean(error, double_support_ ? scale : 1.0, s.t, apexRatio(q, qd) * apex_.gait());
     if (!double_support_) return;
     phase_ = WalkerPhase::DoubleSupport;
     rear_contact_ = s.t;
-    pinnedStateOf(s, leg1_, q, qd);
     ds_ = dsReference(law(), s.t, q, qd, scale);
     return;
   }
@@ -130,12 +145,18 @@ void Walker::switchPhase(const WalkerState& s) {
   const bool past_end = sigma * (q(0) - alpha_end) >= 0.0;
   const double target = ds_.rate_scale * mo.alphadot_iSS;
   const bool on_rate = std::abs(qd(0) - target) <= options_.lift_off_rate_tolerance * std::abs(target);
+  // Nor does it end while the single support it starts would not pass its apex with
+  // apex_energy_fraction of the gait's energy (the outputs lagging, a slow touchdown), unless it
+  // has lasted kMaxDsExtension planned durations.
+  const double elapsed = s.t - phase_start_;
+  const bool energetic = apexRatio(q, qd) >= options_.apex_energy_fraction ||
+                         elapsed >= kMaxDsExtension * mo.T_DS;
   const bool ended = options_.ds_control == DsAlphaControl::Cubic
                          ? s.t >= ds_.t_end
-                         : past_end && (on_rate || s.t - phase_start_ >= mo.T_DS);
+                         : past_end && (on_rate || elapsed >= mo.T_DS) && energetic;
   if (ended || s.t - rear_contact_ >= options_.rear_lift_time) {
     phase_ = WalkerPhase::SingleSupport;
-    phase_start_ = s.t;
+    phase_start_ = lean_start_ = s.t;
   }
 }
 
@@ -178,11 +199,33 @@ double Walker::stepSpeedError(const WalkerState& s) {
   return speed / gait_.speed - 1.0;
 }
 
+// The rate scale 1 − speed_gain × Σ within ±max_rate_correction, and never below the start
+// rate that passes the apex with apex_energy_fraction of the gait's energy (the sum is clamped
+// there, so the lean's second stage sees the bound as a saturation).
+double Walker::lowestRateScale() const {
+  return std::clamp(apex_.minStartRateScale(start_alpha_, options_.apex_energy_fraction),
+                    1.0 - options_.max_rate_correction, 1.0);
+}
+
 double Walker::rateScale(double error) {
   const double m = options_.max_rate_correction;
   speed_error_sum_ = std::clamp(speed_error_sum_ + error, -m / options_.speed_gain,
-                                m / options_.speed_gain);
+                                (1.0 - lowestRateScale()) / options_.speed_gain);
   return 1.0 - options_.speed_gain * speed_error_sum_;
+}
+
+// The largest backward lean of the regulation with which the next single support still passes
+// its apex with apex_energy_fraction of the gait's energy, started at the DS's target rate
+// (rate_scale times the gait's) or with the energy of the touchdown state when that is larger
+// (a late touchdown downhill, which the double support cannot brake): a lean back moves the
+// centre of mass behind its path by ∂x_c/∂pitch per radian all the way to the apex
+// (ApexEnergy::fromStart, linear in the lean).
+double Walker::maxBackLean(double rate_scale, double touchdown_energy) const {
+  const double spare = std::max(apex_.fromStart(start_alpha_, rate_scale, 0.0), touchdown_energy) -
+                       options_.apex_energy_fraction * apex_.gait();
+  const double cost = apex_.fromStart(start_alpha_, rate_scale, 0.0) -
+                      apex_.fromStart(start_alpha_, rate_scale, lean_torque_);
+  return cost > 0.0 ? std::max(0.0, spare / cost) : options_.max_lean;
 }
 
 // Single-support speed regulation: the trunk leans back (forward) after a step faster (slower)
@@ -194,10 +237,11 @@ double Walker::rateScale(double error) {
 // until its own integral has returned to 0; a gait without one has only this regulation. The
 // slope compensation (slopeLean) is added as a feedforward: the integral then removes what the
 // model leaves.
-void Walker::regulateLean(double error) {
+void Walker::regulateLean(double error, double scale, double t, double touchdown_energy) {
   const double m = options_.max_lean;
-  const bool rate_saturated = std::abs(speed_error_sum_) * options_.speed_gain >=
-                              options_.max_rate_correction * (1.0 - 1e-9);
+  const double bound =
+      speed_error_sum_ > 0.0 ? 1.0 - lowestRateScale() : options_.max_rate_correction;
+  const bool rate_saturated = std::abs(speed_error_sum_) * options_.speed_gain >= bound * (1.0 - 1e-9);
   const bool active = !double_support_ || rate_saturated || lean_integral_ != 0.0;
   double lean = 0.0;
   if (active) {
@@ -205,11 +249,44 @@ void Walker::regulateLean(double error) {
     lean_integral_ = std::clamp(lean_integral_ + options_.lean_integral_gain * error, -m, m);
     // The second stage stops where it started: the rate correction takes over again.
     if (double_support_ && !rate_saturated && before * lean_integral_ <= 0.0) lean_integral_ = 0.0;
-    lean = std::clamp(options_.lean_gain * error + lean_integral_, -m, m);
+    const double back = std::min(m, maxBackLean(scale, touchdown_energy));
+    lean_integral_ = std::min(lean_integral_, back);
+    lean = std::clamp(options_.lean_gain * error + lean_integral_, -m, back);
   }
   lean = std::clamp(lean + slopeLean(), -m, m);
-  options_.offset_at_start = options_.offset;
-  options_.offset(1) = -lean;
+  lean_from_ = leanAt(t).value;
+  lean_to_ = lean;
+  // The double support keeps the previous lean; the new one blends in from its end.
+  lean_start_ = double_support_ ? std::numeric_limits<double>::infinity() : t;
+}
+
+// The lean blended from lean_from_ to lean_to_ by a C¹ smoothstep over kLeanBlend T_SS from the
+// single support's start, in time: a step that stalls gets its lean all the same.
+PolyValue<double> Walker::leanAt(double t) const {
+  const double duration = kLeanBlend * gait_.motion.T_SS, h = lean_to_ - lean_from_;
+  const double u = (t - lean_start_) / duration;
+  if (u >= 1.0 || h == 0.0) return {lean_to_, 0.0, 0.0};
+  if (u <= 0.0) return {lean_from_, 0.0, 0.0};
+  return {lean_from_ + h * u * u * (3.0 - 2.0 * u), h * 6.0 * u * (1.0 - u) / duration,
+          h * (6.0 - 12.0 * u) / (duration * duration)};
+}
+
+// The apex energy predicted from (q, q̇), leg 1 the stance (in DS the front) leg, over the
+// gait's.
+double Walker::apexRatio(const Vec5& q, const Vec5& qd) const {
+  const StanceMomentum m = stanceMomentum(model_, q, qd);
+  return apex_.predicted(q(0), m.sigma, m.gravity_torque) / apex_.gait();
+}
+
+// The references' offset at t: the regulation's lean on leg-1 δ2 (back: δ2 down, pitch =
+// α + δ1 − δ2), with its time derivatives.
+TimedOffset Walker::referenceOffset(double t) const {
+  const PolyValue<double> lean = leanAt(t);
+  TimedOffset o;
+  o.value(1) = -lean.value;
+  o.rate(1) = -lean.first;
+  o.acceleration(1) = -lean.second;
+  return o;
 }
 
 bool Walker::fallen(const WalkerState& s, const Vec5& q) const {
@@ -240,6 +317,7 @@ WalkerCommand Walker::torques(const WalkerState& s) {
     c.fallen = true;
     return c;
   }
+  options_.timed_offset = referenceOffset(s.t);
   c.law = phase_ == WalkerPhase::SingleSupport ? singleSupportControl(law(), q, qd)
                                                : doubleSupportControl(law(), ds_, s.t, q, qd);
   // The envelope at the current joint speeds holds whatever the projection could do.

@@ -99,25 +99,6 @@ PolyValue<double> plannedSsReference(const WalkingController& s, int j, double a
           -f.first * decay * sigma / kHoldLength};
 }
 
-// ControllerOptions::offset blended in from offset_at_start by a C¹ smoothstep of s.
-PolyValue<double> referenceOffset(const WalkingController& s, int j, double alpha) {
-  const GaitMotion<double>& mo = s.motion;
-  const double a = s.options.offset_at_start(j), b = s.options.offset(j);
-  if (a == b) return {b, 0.0, 0.0};
-  const double ds = 1.0 / (kOffsetBlend * (mo.alpha_fSS - mo.q_iSS(0)));  // du/dα
-  const double u = (alpha - mo.q_iSS(0)) * ds;
-  if (u <= 0.0) return {a, 0.0, 0.0};
-  if (u >= 1.0) return {b, 0.0, 0.0};
-  const double h = b - a;
-  return {a + h * u * u * (3.0 - 2.0 * u), h * 6.0 * u * (1.0 - u) * ds,
-          h * (6.0 - 12.0 * u) * ds * ds};
-}
-
-PolyValue<double> ssReference(const WalkingController& s, int j, double alpha) {
-  const PolyValue<double> r = plannedSsReference(s, j, alpha), o = referenceOffset(s, j, alpha);
-  return {r.value + o.value, r.first + o.first, r.second + o.second};
-}
-
 // SS input–output linearisation: Γ with B A⁻¹ D_Γ Γ = ÿ* + δ_d'' α̇² + B A⁻¹ (C + G), where
 // y = δ − δ_d(α), ẏ = B q̇, B = [−δ_d'(α) | I], ÿ* = −ω² y − 2ω ẏ. With touchdown by foot
 // height, α may pass α_fSS before the foot lands: the polynomials δ_d are then extrapolated
@@ -130,10 +111,10 @@ Vec4 ssControl(const WalkingController& s, const Vec5& q, const Vec5& qd, Contro
   Eigen::Matrix<double, 4, 5> B = Eigen::Matrix<double, 4, 5>::Zero();
   Vec4 curvature;
   for (int j = 0; j < 4; ++j) {
-    const PolyValue<double> v = ssReference(s, j, q(0));
+    const PolyValue<double> v = plannedSsReference(s, j, q(0));
     B(j, 0) = -v.first;
     B(j, j + 1) = 1.0;
-    e.error(j) = q(j + 1) - v.value;
+    e.error(j) = q(j + 1) - v.value - s.options.timed_offset.value(j);
     curvature(j) = v.second * qd(0) * qd(0);
   }
   const Eigen::LDLT<Mat5> A(t.A);
@@ -151,7 +132,8 @@ Vec4 ssControl(const WalkingController& s, const Vec5& q, const Vec5& qd, Contro
     return r;
   };
   const PdGains k = pdGains(s.options);
-  const Vec4 v_d = -k.kp * e.error - k.kd * (B * qd);
+  const TimedOffset& o = s.options.timed_offset;
+  const Vec4 v_d = -k.kp * e.error - k.kd * (B * qd) + (k.kd * o.rate + o.acceleration);
   if (!s.options.torque_limits) return response(v_d).gamma_star;
   const Projected p = projectInputs(response, v_d, Vec4::Ones(), torqueLimits(s, qd),
                                     contactLimits(s), false);
@@ -177,11 +159,12 @@ DsInputs cubicDsInputs(const WalkingController& s, const DsReference& ds, double
   const GaitMotion<double>& mo = s.motion;
   const PolyValue<double> a = ds.alpha(t);
   const PolyValue<double> d1 = mo.ds_delta1(a.value), d2 = mo.ds_delta2(a.value);
-  const Eigen::Vector3d p(a.value, d1.value + s.options.offset_at_start(0),
-                          d2.value + s.options.offset_at_start(1));
-  const Eigen::Vector3d pd(a.first, d1.first * a.first, d2.first * a.first);
-  const Eigen::Vector3d pdd(a.second, d1.second * a.first * a.first + d1.first * a.second,
-                            d2.second * a.first * a.first + d2.first * a.second);
+  const TimedOffset& o = s.options.timed_offset;
+  const Eigen::Vector3d p(a.value, d1.value + o.value(0), d2.value + o.value(1));
+  const Eigen::Vector3d pd(a.first, d1.first * a.first + o.rate(0), d2.first * a.first + o.rate(1));
+  const Eigen::Vector3d pdd(
+      a.second, d1.second * a.first * a.first + d1.first * a.second + o.acceleration(0),
+      d2.second * a.first * a.first + d2.first * a.second + o.acceleration(1));
   const Eigen::Vector3d err = p - q.head<3>(), errd = pd - qd.head<3>();
   error << err, 0.0;
   const PdGains k = pdGains(s.options);
@@ -199,9 +182,9 @@ DsInputs timeOptimalDsInputs(const WalkingController& s, const DsReference& ds, 
   CyclicDsPoint c = cyclicDsAlpha(mo, q(0));
   c.alphad *= ds.rate_scale;  // the curve scaled: α̈_c = slope α̇ still holds on it
   const PolyValue<double> d1 = mo.ds_delta1(q(0)), d2 = mo.ds_delta2(q(0));
-  const Eigen::Vector2d y(q(1) - d1.value - s.options.offset_at_start(0),
-                          q(2) - d2.value - s.options.offset_at_start(1));
-  const Eigen::Vector2d yd(qd(1) - d1.first * qd(0), qd(2) - d2.first * qd(0));
+  const TimedOffset& o = s.options.timed_offset;
+  const Eigen::Vector2d y(q(1) - d1.value - o.value(0), q(2) - d2.value - o.value(1));
+  const Eigen::Vector2d yd(qd(1) - d1.first * qd(0) - o.rate(0), qd(2) - d2.first * qd(0) - o.rate(1));
   error << c.alphad - qd(0), y, 0.0;
   const PdGains k = pdGains(s.options);
   // The bounds at (α, α̇) with the contact rows of the projection (4.60), its R_min included.
@@ -212,7 +195,7 @@ DsInputs timeOptimalDsInputs(const WalkingController& s, const DsReference& ds, 
   double alphadd = c.slope * qd(0) + kTimeOptimalGain * (c.alphad - qd(0));  // α̈_c on the curve
   if (b.defined) alphadd = std::clamp(alphadd, b.min, b.max);                // (4.1)
   DsInputs in;
-  in.v_d << alphadd, Eigen::Vector2d(-k.kp * y - k.kd * yd);
+  in.v_d << alphadd, Eigen::Vector2d(-k.kp * y - k.kd * yd + o.acceleration.head<2>());
   in.T.block<2, 1>(1, 0) << d1.first, d2.first;
   in.b << 0.0, d1.second * qd(0) * qd(0), d2.second * qd(0) * qd(0);
   in.weights << 1.0, kOutputWeight, kOutputWeight, kR2xWeight;

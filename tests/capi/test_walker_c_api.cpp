@@ -84,10 +84,12 @@ TEST_CASE("C walker reports NULL arguments and bad input with the file or key",
   CHECK(loadError(path, "max_lean: 0").find("max_lean") != std::string::npos);
   CHECK(loadError(path, "slope_compensation: -1").find("slope_compensation") !=
         std::string::npos);
+  CHECK(loadError(path, "apex_energy_fraction: -0.5").find("apex_energy_fraction") !=
+        std::string::npos);
   gaitopt_walker* w = gaitopt_walker_load(
       path.c_str(),
       "lean_gain: 0\nlean_integral_gain: 0\nslope_compensation: 0\nslope_deadband: 0.01\n"
-      "max_lean: 0.2",
+      "max_lean: 0.2\napex_energy_fraction: 0.3",
       nullptr, 0);
   CHECK(w != nullptr);
   gaitopt_walker_free(w);

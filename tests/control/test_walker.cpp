@@ -180,20 +180,18 @@ TEST_CASE("Walker starts on the leg whose alpha is at the SS start, whatever the
 
 namespace {
 
-// The leg-1 δ2 output of the walker's SS law (the stance hip) with the state on the gait's
-// constraints at progress s of the SS on the right leg, foot at x, after one step of the left
-// leg from x = 0 ending at t_touchdown.
-struct LeanRun {
-  double error_at_start, error_mid_blend, error_after_blend;
+// One step of the left leg from x = 0 ending at t_touchdown with the right foot's touchdown at
+// x_right: the step's end turned by `turn` about the stance foot (inclined ground), at
+// speed_ratio times the gait's speed.
+struct Touchdown {
+  double x_right, t;
 };
-LeanRun leanAfterOneStep(const ShippedGait& g, WalkerOptions o, double speed_ratio,
-                         double turn = 0.0) {
-  Walker w(g.model, g.evaluation, g.gait.options.parameterisation, o);
+Touchdown touchdownAfterOneStep(Walker& w, const ShippedGait& g, double speed_ratio, double turn) {
   const GaitMotion<double>& mo = g.evaluation.motion;
   w.torques(w.initialState());
   Vec5 q, qd;
   ssState(mo, mo.alpha_fSS, mo.alphadot_fSS, q, qd);
-  q(0) += turn;  // the step's end turned about the stance foot: inclined ground
+  q(0) += turn;
   // The right foot's x from the left foot at 0: the hip seen from both feet.
   const WalkerState left = measured(g.model, q, qd, Stance::Left, 0.0, {true, true}, 0.0);
   Vec5 qr, qdr;
@@ -203,34 +201,61 @@ LeanRun leanAfterOneStep(const ShippedGait& g, WalkerOptions o, double speed_rat
   const double t_touchdown = x_right / (speed_ratio * g.evaluation.speed);
   w.torques(measured(g.model, q, qd, Stance::Left, 0.0, {true, true}, t_touchdown));
   REQUIRE(w.steps() == 1);
-  const auto error_at = [&](double progress, double dt) {
+  return {x_right, t_touchdown};
+}
+
+// The leg-1 δ2 output of the walker's SS law (the stance hip) with the state on the gait's
+// constraints on the right leg, after one step of the left leg: at the single support's start
+// (the rear foot lifted 30 ms after the touchdown when the gait has a double support), half the
+// lean's blend later with the robot stalled at that start, and after the blend at s = 0.2.
+struct LeanRun {
+  double error_at_start, error_mid_blend, error_after_blend;
+};
+LeanRun leanAfterOneStep(const ShippedGait& g, WalkerOptions o, double speed_ratio,
+                         double turn = 0.0) {
+  Walker w(g.model, g.evaluation, g.gait.options.parameterisation, o);
+  const GaitMotion<double>& mo = g.evaluation.motion;
+  const Touchdown td = touchdownAfterOneStep(w, g, speed_ratio, turn);
+  const auto error_at = [&](double progress, double t) {
+    Vec5 q, qd;
     ssState(mo, mo.q_iSS(0) + progress * (mo.alpha_fSS - mo.q_iSS(0)), mo.alphadot_iSS, q, qd);
     // The rear (left) foot off the ground: the DS, if any, ends.
-    return w.torques(measured(g.model, q, qd, Stance::Right, x_right, {false, true},
-                              t_touchdown + dt))
+    return w.torques(measured(g.model, q, qd, Stance::Right, td.x_right, {false, true}, t))
         .law.error(1);
   };
+  const double t_ss = td.t + (g.gait.options.parameterisation.hasDoubleSupport() ? 0.03 : 0.0);
+  const double blend = kLeanBlend * mo.T_SS;
   LeanRun r;
-  r.error_at_start = error_at(0.0, 0.03);
-  r.error_mid_blend = error_at(0.5 * kOffsetBlend, 0.04);
-  r.error_after_blend = error_at(2.0 * kOffsetBlend, 0.05);
+  r.error_at_start = error_at(0.0, t_ss);
+  REQUIRE(w.phase() == WalkerPhase::SingleSupport);
+  r.error_mid_blend = error_at(0.0, t_ss + 0.5 * blend);
+  r.error_after_blend = error_at(0.2, t_ss + 2.0 * blend);
   REQUIRE(w.phase() == WalkerPhase::SingleSupport);
   return r;
 }
 
-}  // namespace
-
-TEST_CASE("Walker leans the trunk back after a fast step, blended in over the SS start",
-          "[control][walker]") {
-  const ShippedGait g("configs/gait/default_impact.yaml");
+// The walker's options with the lean's PI gains 0.1 and 0.05 rad per relative speed error.
+WalkerOptions leanOptions(const ShippedGait& g, double apex_energy_fraction) {
   WalkerOptions o = walkerOptionsFor(g.gait.options, g.model);
   o.lean_gain = 0.1;
   o.lean_integral_gain = 0.05;
+  o.apex_energy_fraction = apex_energy_fraction;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("Walker leans the trunk back after a fast step, blended in time from the SS start",
+          "[control][walker]") {
+  const ShippedGait g("configs/gait/default_impact.yaml");
+  WalkerOptions o = leanOptions(g, 0.0);  // the lean's energy bound is checked below
   // A step at twice the gait's speed: relative error +1, lean 0.1 + 0.05 rad. The output
   // δ2 − (δ_d2 − lean) of a state on the planned constraints is the lean (pitch = α + δ1 − δ2).
   const LeanRun fast = leanAfterOneStep(g, o, 2.0);
   CHECK(fast.error_at_start == Approx(0.0).margin(1e-12));
-  CHECK(fast.error_mid_blend == Approx(0.5 * 0.15).margin(1e-12));  // smoothstep(1/2) = 1/2
+  // Half the blend's time later, the robot stalled at the start: half the lean
+  // (smoothstep(1/2) = 1/2), whatever the phase variable does.
+  CHECK(fast.error_mid_blend == Approx(0.5 * 0.15).margin(1e-12));
   CHECK(fast.error_after_blend == Approx(0.15).margin(1e-12));
   // Slower: leans forward; bounded by max_lean.
   o.max_lean = 0.02;
@@ -239,16 +264,64 @@ TEST_CASE("Walker leans the trunk back after a fast step, blended in over the SS
   CHECK(leanAfterOneStep(g, o, 1.0).error_after_blend == Approx(0.0).margin(1e-9));
 }
 
+TEST_CASE("Walker bounds the lean back by the energy the next single support needs at its apex",
+          "[control][walker]") {
+  // This impact gait passes its apex with a tenth of its start energy: a lean back of 0.15 rad
+  // would take more than half of it.
+  const ShippedGait g("configs/gait/default_impact.yaml");
+  double previous = 0.15;
+  for (double fraction : {0.5, 0.8}) {
+    const double lean = leanAfterOneStep(g, leanOptions(g, fraction), 2.0).error_after_blend;
+    CHECK(lean > 0.0);
+    CHECK(lean < previous - 0.01);
+    previous = lean;
+  }
+  // A slow step's lean forward is not bounded: 0.1 × 0.5 + 0.05 × 0.5.
+  CHECK(leanAfterOneStep(g, leanOptions(g, 0.8), 0.5).error_after_blend ==
+        Approx(-0.075).margin(1e-12));
+}
+
 TEST_CASE("Walker with a double support leans only once the DS rate correction is at its bound",
           "[control][walker]") {
   const DefaultGait g;
-  WalkerOptions o = walkerOptionsFor(g.gait.options, g.model);
-  o.lean_gain = 0.1;
-  o.lean_integral_gain = 0.05;
-  // +50 % within the rate correction's reach (0.2 × 0.5 < 0.3): the DS alone regulates.
+  WalkerOptions o = leanOptions(g, 0.0);
+  o.max_rate_correction = 0.15;
+  // +50 % within the rate correction's reach (0.2 × 0.5 < 0.15): the DS alone regulates.
   CHECK(leanAfterOneStep(g, o, 1.5).error_after_blend == Approx(0.0).margin(1e-12));
-  // Beyond it (0.2 × 2 > 0.3): the lean acts, 0.1 × 2 + 0.05 × 2.
+  // Beyond it (0.2 × 2 > 0.15): the lean acts, 0.1 × 2 + 0.05 × 2.
   CHECK(leanAfterOneStep(g, o, 3.0).error_after_blend == Approx(0.3).margin(1e-9));
+  // The DS's braking ends where its start rate would leave less than half the gait's apex
+  // energy (about 9 % below the gait's rate on this gait): +50 % is then beyond it.
+  o.apex_energy_fraction = 0.5;
+  CHECK(leanAfterOneStep(g, o, 1.5).error_after_blend > 0.0);
+}
+
+TEST_CASE("Walker holds the double support while the single support would not pass its apex",
+          "[control][walker]") {
+  // The 0.3 m/s gait passes its apex with about a fifth of its start energy: 10 % under its
+  // start rate it would not pass it (control/apex_energy.hpp).
+  const ShippedGait g("configs/gait/optimal_0.3.yaml");
+  const GaitMotion<double>& mo = g.evaluation.motion;
+  WalkerOptions o = walkerOptionsFor(g.gait.options, g.model);
+  o.lift_off_rate_tolerance = 0.2;  // 10 % off the target rate counts as on it
+  const auto phase_after = [&](double rate_scale, double t_after, double fraction) {
+    o.apex_energy_fraction = fraction;
+    Walker w(g.model, g.evaluation, g.gait.options.parameterisation, o);
+    const Touchdown td = touchdownAfterOneStep(w, g, 1.0, 0.0);
+    REQUIRE(w.phase() == WalkerPhase::DoubleSupport);
+    Vec5 q, qd;  // past the DS end α_fDS = α_iSS, on the SS path, both feet down
+    ssState(mo, mo.q_iSS(0) + 0.01 * (mo.alpha_fSS - mo.q_iSS(0)), rate_scale * mo.alphadot_iSS, q,
+            qd);
+    w.torques(measured(g.model, q, qd, Stance::Right, td.x_right, {true, true}, td.t + t_after));
+    return w.phase();
+  };
+  // On the rate, T_DS after the touchdown: the DS ends.
+  CHECK(phase_after(1.0, mo.T_DS, 0.5) == WalkerPhase::SingleSupport);
+  // 10 % slow: on the (widened) rate, but the SS would fall back: held.
+  CHECK(phase_after(0.9, mo.T_DS, 0.5) == WalkerPhase::DoubleSupport);
+  // ... unless the energy check is off, or the DS has lasted its longest.
+  CHECK(phase_after(0.9, mo.T_DS, 0.0) == WalkerPhase::SingleSupport);
+  CHECK(phase_after(0.9, 1.01 * kMaxDsExtension * mo.T_DS, 0.5) == WalkerPhase::SingleSupport);
 }
 
 TEST_CASE("Walker measures the slope between the feet and leans back downhill by its CoM shift",

@@ -76,6 +76,12 @@ typedef struct {
  *   slope_compensation  default 1: scale of the trunk lean that compensates the slope
  *                  measured between the feet at each touchdown, >= 0 (0: off)
  *   slope_deadband default 0.005: a measured slope within +- this [rad] is level, >= 0
+ *   apex_energy_fraction  default 0.5: the single support must pass over the stance foot
+ *                  with at least this fraction of the gait's own squared angular momentum
+ *                  there (predicted from the gait's zero dynamics): the double support does
+ *                  not end before, its speed correction never targets less, and the trunk
+ *                  lean back of the speed regulation stays within what is left, >= 0 (0: the
+ *                  single support only has to pass)
  * An unknown key, a value of the wrong type or out of range is an error.
  * Returns NULL on failure and then, unless error is NULL, writes a NUL-terminated message
  * naming the file (or the options key) and the problem into error, truncated to

@@ -7,6 +7,7 @@
 // region the gait can recover from. The C interface (control/walker.h) wraps this class.
 #include <array>
 
+#include "gaitopt/control/apex_energy.hpp"
 #include "gaitopt/control/walking_controller.hpp"
 #include "gaitopt/gait/evaluation.hpp"
 #include "gaitopt/gait/options.hpp"
@@ -55,6 +56,13 @@ struct WalkerOptions : ControllerOptions {
   // added to the regulation's lean; a slope within ±slope_deadband [rad] is level ground.
   double slope_compensation = 1.0;
   double slope_deadband = 0.005;
+  // Single-support energy (control/apex_energy.hpp): the gait's zero dynamics predict from the
+  // angular momentum about the stance foot the squared momentum σ_apex² with which the robot
+  // will pass over it. The double support does not end while the single support it starts
+  // would pass with less than apex_energy_fraction of the gait's own σ_apex²; its rate
+  // correction never targets a start rate below that; the lean back of the regulation stays
+  // within what the start leaves above it (Walker::maxBackLean).
+  double apex_energy_fraction = 0.5;
 };
 
 // The controller options a gait asks for: its friction cones, normal-force margin and torque
@@ -66,6 +74,14 @@ struct WalkerOptions : ControllerOptions {
 // support without the foot it regulates the speed with. Measured in MuJoCo on the default gait:
 // 0.3 keeps the rear foot down at gain_scale 0.5, 20 N does not.
 constexpr double kWalkerNormalForceFraction = 0.3;
+
+// The longest double support [planned durations] the walker holds for the single support's
+// energy (WalkerOptions::apex_energy_fraction): below the fall judgement's stall_factor.
+constexpr double kMaxDsExtension = 3.0;
+
+// The trunk lean of the speed regulation (Walker::regulateLean) moves from the previous step's
+// to the new one over this fraction of the gait's T_SS after the touchdown.
+constexpr double kLeanBlend = 0.3;
 WalkerOptions walkerOptionsFor(const GaitOptions& gait, const Model& model);
 
 // The walker's view of the walk.
@@ -118,11 +134,22 @@ class Walker {
   Stance startingLeg(const WalkerState& s) const;  // leg 1 at the first sample
   double stepSpeedError(const WalkerState& s);  // at a touchdown: the last step's speed error
   double rateScale(double error);               // after a touchdown: the DS's rate scale
-  void regulateLean(double error);              // after a touchdown: the SS trunk lean
+  double lowestRateScale() const;               // the rate scale's lower bound
+  // After a touchdown: the trunk lean, from the step's speed error, the DS's rate scale and the
+  // apex energy σ_apex² predicted from the touchdown state.
+  void regulateLean(double error, double scale, double t, double touchdown_energy);
+  double lean_from_ = 0.0, lean_to_ = 0.0, lean_start_ = 0.0;   // its blend in time
+  PolyValue<double> leanAt(double t) const;  // the lean [rad] and its time derivatives at t
+  double maxBackLean(double rate_scale, double touchdown_energy) const;
+  double start_alpha_ = 0.0;  // α at which the next single support starts (set at touchdowns)
+  double lean_torque_ = 0.0;  // M g ∂x_c/∂pitch: gravity's torque per radian of lean [N·m]
   double lean_integral_ = 0.0;
   double slope_ = 0.0;             // the ground's inclination measured at the last touchdown
   double slope_lean_ratio_ = 0.0;  // trunk lean per radian of slope (walker.cpp)
   double slopeLean() const;
+  ApexEnergy apex_;
+  double apexRatio(const Vec5& q, const Vec5& qd) const;  // σ_apex² from (q, q̇) / the gait's
+  TimedOffset referenceOffset(double t) const;            // the law's timed offset at t
 };
 
 // Pinned coordinates q = (α, δ1..δ4) and rates of the measured state with `leg1` as leg 1

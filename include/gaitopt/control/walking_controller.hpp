@@ -33,6 +33,11 @@ const char* toString(DsAlphaControl c);  // cubic | time_optimal
 // (a discontinuous right-hand side would chatter on the curve).
 constexpr double kTimeOptimalGain = 400.0;
 
+// A reference offset o(t) at the current time, with ȯ and ö.
+struct TimedOffset {
+  Vec4 value = Vec4::Zero(), rate = Vec4::Zero(), acceleration = Vec4::Zero();
+};
+
 struct ControllerOptions {
   // Output gains Kp = gain_scale ω², Kd = gain_scale 2ω: critically damped at gain_scale 1
   // (bandwidth ω [rad/s]); gain_scale scales both (damping ratio √gain_scale).
@@ -52,16 +57,14 @@ struct ControllerOptions {
   // thesis' freeze, §4.3.1.3, made C¹).
   bool hold_references_past_fss = false;
   DsAlphaControl ds_control = DsAlphaControl::Cubic;
-  // Offsets added to the SS references δ_d(α) (leg-1 order): `offset` over the step, blended in
-  // from `offset_at_start` (the previous step's) over the first kOffsetBlend of s, so the
-  // references stay continuous when a step-to-step regulator changes them at a touchdown
-  // (control/walker.hpp: the trunk lean of the single-support speed regulation). The double
-  // support's references δ1,2 (leg 1 the front leg) carry offset_at_start.
-  Vec4 offset = Vec4::Zero(), offset_at_start = Vec4::Zero();
+  // Offsets o(t) added to the SS references δ_d(α) and the DS references δ_d1,2(α) (leg-1
+  // order) with their time derivatives: the PD tracks them exactly (ẏ and ÿ* carry ȯ and ö),
+  // so a step-to-step regulator changes its references smoothly in time, never by a jump of the
+  // reference, and also when the phase variable stalls (control/walker.hpp: the trunk lean
+  // of the single-support speed regulation and the energy guard).
+  TimedOffset timed_offset;
 };
 
-// Fraction of the SS phase s over which ControllerOptions::offset_at_start blends into offset.
-constexpr double kOffsetBlend = 0.3;
 
 struct PdGains {
   double kp, kd;  // [1/s²], [1/s]
