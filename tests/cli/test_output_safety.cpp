@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -16,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "gaitopt/io/csv_table.hpp"
 #include "test_files.hpp"
 #include "test_opensim_data.hpp"
 #include "test_support.hpp"
@@ -301,8 +303,8 @@ TEST_CASE("output safety: a killed run leaves the old or the new result, never a
   // killed (SIGKILL) after each delay: OUT must then hold the complete old or the complete new
   // result (its complete reference run), whatever the moment.
   // `out` names the result (a directory, or a file); its files compare without their wall
-  // times (the lines naming one, sweep.csv's last column), the one part of a result that
-  // differs between identical runs.
+  // times (the lines naming one, sweep.csv's wall_time_s column), the one part of a result
+  // that differs between identical runs.
   const auto requireOldOrNew = [&](const std::string& old_run, const std::string& new_run,
                                    const std::vector<std::string>& delays,
                                    const std::string& out = "walk",
@@ -313,9 +315,22 @@ TEST_CASE("output safety: a killed run leaves the old or the new result, never a
         std::istringstream lines(content);
         content.clear();
         const bool sweep_csv = path.size() >= 9 && path.substr(path.size() - 9) == "sweep.csv";
-        for (std::string line; std::getline(lines, line);)
-          if (line.find("wall_time_s\"") == std::string::npos)
-            content += (sweep_csv ? line.substr(0, line.rfind(',')) : line) + "\n";
+        int wall_column = -1;
+        for (std::string line; std::getline(lines, line);) {
+          if (line.find("wall_time_s\"") != std::string::npos) continue;
+          if (!sweep_csv) {
+            content += line + "\n";
+            continue;
+          }
+          std::vector<std::string> fields = gaitopt::splitFields(line);
+          if (wall_column < 0)
+            wall_column = static_cast<int>(
+                std::find(fields.begin(), fields.end(), "wall_time_s") - fields.begin());
+          if (wall_column < static_cast<int>(fields.size()))
+            fields.erase(fields.begin() + wall_column);
+          for (const std::string& f : fields) content += f + ",";
+          content += "\n";
+        }
       }
       return entries;
     };
