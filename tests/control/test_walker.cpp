@@ -268,7 +268,7 @@ TEST_CASE("Walker bounds the lean back by the energy the next single support nee
           "[control][walker]") {
   // This impact gait passes its apex with a tenth of its start energy: a lean back of 0.15 rad
   // would take more than half of it.
-  const ShippedGait g("configs/gait/default_impact.yaml");
+  const ShippedGait g("tests/data/gait_optima/default_impact_low_apex.yaml");
   double previous = 0.15;
   for (double fraction : {0.5, 0.8}) {
     const double lean = leanAfterOneStep(g, leanOptions(g, fraction), 2.0).error_after_blend;
