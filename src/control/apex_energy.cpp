@@ -55,24 +55,27 @@ double ApexEnergy::interpolate(const std::vector<double>& v, double alpha) const
   return v[k] + (u - k) * (v[k + 1] - v[k]);
 }
 
+// σ_apex² − σ²(α): min Φ ahead − Φ(α), and the off-path torque's work −2 ΔG₁ ∫ f dα to the apex.
+double ApexEnergy::changeToApex(double alpha, double gravity_torque_offset) const {
+  const double f_to_apex = interpolate(f_integral_apex_, alpha) - interpolate(f_integral_, alpha);
+  return interpolate(phi_min_ahead_, alpha) - interpolate(phi_, alpha) -
+         2.0 * gravity_torque_offset * f_to_apex;
+}
+
 double ApexEnergy::predicted(double alpha, double sigma, double gravity_torque) const {
   const double kinetic = sigma * sigma_start_ >= 0.0 ? sigma * sigma : -sigma * sigma;
-  const double off_path = -2.0 * (gravity_torque - interpolate(torque_, alpha)) *
-                          (interpolate(f_integral_apex_, alpha) - interpolate(f_integral_, alpha));
-  return kinetic - interpolate(phi_, alpha) + interpolate(phi_min_ahead_, alpha) + off_path;
+  return kinetic + changeToApex(alpha, gravity_torque - interpolate(torque_, alpha));
 }
 
 // On the path the gait's σ² at α is σ_iSS² + Φ(α) (3.14).
 double ApexEnergy::fromStart(double alpha, double rate_scale, double gravity_torque_offset) const {
-  const double sigma2 = rate_scale * rate_scale * std::max(0.0, gait_start_ + interpolate(phi_, alpha));
-  return sigma2 - interpolate(phi_, alpha) + interpolate(phi_min_ahead_, alpha) -
-         2.0 * gravity_torque_offset *
-             (interpolate(f_integral_apex_, alpha) - interpolate(f_integral_, alpha));
+  const double sigma2 = std::max(0.0, gait_start_ + interpolate(phi_, alpha));
+  return rate_scale * rate_scale * sigma2 + changeToApex(alpha, gravity_torque_offset);
 }
 
 double ApexEnergy::minStartRateScale(double alpha, double fraction) const {
   const double sigma2 = gait_start_ + interpolate(phi_, alpha);
-  const double needed = fraction * gait_ + interpolate(phi_, alpha) - interpolate(phi_min_ahead_, alpha);
+  const double needed = fraction * gait_ - changeToApex(alpha, 0.0);
   return sigma2 > 0.0 ? std::sqrt(std::max(0.0, needed) / sigma2) : 1.0;
 }
 

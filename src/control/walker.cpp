@@ -149,11 +149,13 @@ void Walker::switchPhase(const WalkerState& s) {
   // apex_energy_fraction of the gait's energy (the outputs lagging, a slow touchdown), unless it
   // has lasted kMaxDsExtension planned durations.
   const double elapsed = s.t - phase_start_;
-  const bool energetic = apexRatio(q, qd) >= options_.apex_energy_fraction ||
-                         elapsed >= kMaxDsExtension * mo.T_DS;
+  const auto energetic = [&] {
+    return elapsed >= kMaxDsExtension * mo.T_DS ||
+           apexRatio(q, qd) >= options_.apex_energy_fraction;
+  };
   const bool ended = options_.ds_control == DsAlphaControl::Cubic
                          ? s.t >= ds_.t_end
-                         : past_end && (on_rate || elapsed >= mo.T_DS) && energetic;
+                         : past_end && (on_rate || elapsed >= mo.T_DS) && energetic();
   if (ended || s.t - rear_contact_ >= options_.rear_lift_time) {
     phase_ = WalkerPhase::SingleSupport;
     phase_start_ = lean_start_ = s.t;
@@ -221,10 +223,10 @@ double Walker::rateScale(double error) {
 // centre of mass behind its path by ∂x_c/∂pitch per radian all the way to the apex
 // (ApexEnergy::fromStart, linear in the lean).
 double Walker::maxBackLean(double rate_scale, double touchdown_energy) const {
-  const double spare = std::max(apex_.fromStart(start_alpha_, rate_scale, 0.0), touchdown_energy) -
-                       options_.apex_energy_fraction * apex_.gait();
-  const double cost = apex_.fromStart(start_alpha_, rate_scale, 0.0) -
-                      apex_.fromStart(start_alpha_, rate_scale, lean_torque_);
+  const double upright = apex_.fromStart(start_alpha_, rate_scale, 0.0);
+  const double spare =
+      std::max(upright, touchdown_energy) - options_.apex_energy_fraction * apex_.gait();
+  const double cost = upright - apex_.fromStart(start_alpha_, rate_scale, lean_torque_);
   return cost > 0.0 ? std::max(0.0, spare / cost) : options_.max_lean;
 }
 
@@ -241,7 +243,8 @@ void Walker::regulateLean(double error, double scale, double t, double touchdown
   const double m = options_.max_lean;
   const double bound =
       speed_error_sum_ > 0.0 ? 1.0 - lowestRateScale() : options_.max_rate_correction;
-  const bool rate_saturated = std::abs(speed_error_sum_) * options_.speed_gain >= bound * (1.0 - 1e-9);
+  const bool rate_saturated =
+      std::abs(speed_error_sum_) * options_.speed_gain >= bound * (1.0 - 1e-9);
   const bool active = !double_support_ || rate_saturated || lean_integral_ != 0.0;
   double lean = 0.0;
   if (active) {

@@ -38,6 +38,7 @@ class ApexEnergy {
   std::vector<double> phi_, phi_min_ahead_, torque_, f_integral_, f_integral_apex_;
   double sigma_start_ = 0.0, gait_start_ = 0.0, gait_ = 0.0;  // σ_iSS, σ_iSS², σ_apex²
   double interpolate(const std::vector<double>& v, double alpha) const;
+  double changeToApex(double alpha, double gravity_torque_offset) const;
 };
 
 // The angular momentum about the stance foot σ = ∂T/∂α̇ = (A q̇)₁ of the pinned model at (q, q̇)

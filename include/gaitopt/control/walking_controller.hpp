@@ -61,10 +61,9 @@ struct ControllerOptions {
   // order) with their time derivatives: the PD tracks them exactly (ẏ and ÿ* carry ȯ and ö),
   // so a step-to-step regulator changes its references smoothly in time, never by a jump of the
   // reference, and also when the phase variable stalls (control/walker.hpp: the trunk lean
-  // of the single-support speed regulation and the energy guard).
+  // of the single-support speed regulation).
   TimedOffset timed_offset;
 };
-
 
 struct PdGains {
   double kp, kd;  // [1/s²], [1/s]

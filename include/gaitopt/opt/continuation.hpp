@@ -11,8 +11,8 @@
 // (opt/infeasibility_certificate.hpp) from its least violating attempt: a certificate (s* > 0)
 // ends its attempts, the speed shown infeasible with its blocking rows; otherwise it is retried
 // once from the nearest optimum beyond it (further from the chain's start), when there is
-// one, then once from defaultInitialGuess, and, when the elastic problem (again, from the
-// attempt then kept) meets every row, once from that problem's point. With jobs > 1 the list
+// one, then once from defaultInitialGuess, and the elastic problem runs again from the attempt
+// then kept. With jobs > 1 the list
 // is cut into `jobs` contiguous chunks, each an independent chain (started at its speed
 // closest to the free-speed optimum) on its own thread; each chunk's results are exactly those
 // of a one-chain run on that chunk alone (e.g. a shard).
@@ -54,7 +54,7 @@ struct SweepPoint {
   bool warm_started = false;  // that attempt started from another listed speed's optimum
   double from_speed = 0.0;    // speed of the optimum it started from: a listed speed, the free
                               // speed (chain start), NaN when it started from defaultInitialGuess
-  int attempts = 0;           // optimisations run for this speed (1–4)
+  int attempts = 0;           // optimisations run for this speed (1–3)
   int total_iterations = 0;   // over all attempts and the elastic problem
   double total_wall_time_s = 0.0;
   // The last elastic problem, when the speed's attempts ended without an optimum (from the
