@@ -121,12 +121,7 @@ void Walker::switchPhase(const WalkerState& s) {
   if (phase_ == WalkerPhase::SingleSupport) {
     if (!s.contact[side(other(leg1_))] || phaseProgress(q(0)) < kTouchdownArmed) return;
     slope_ = groundSlopeBetweenFeet(model_, q);
-    // Uphill the next swing foot meets the rising ground at the planned step length instead of
-    // early, with its planned forward speed (an impact that lifts the rear foot). Downhill the
-    // references held past α_fSS already bring a late foot down (walkerOptionsFor).
-    options_.swing_end_offset = slope_ > options_.slope_deadband
-                                    ? slopeSwingOffset(model_, mo, slope_)
-                                    : Vec4::Zero();
+    options_.swing_end_offset = slopeSwingEnd();
     leg1_ = other(leg1_);
     pinnedStateOf(s, leg1_, q, qd);
     // The next single support starts at α_iSS, or where the new stance leg already is.
@@ -209,10 +204,12 @@ Stance Walker::startingLeg(const WalkerState& s) const {
   return progress(Stance::Left) <= progress(Stance::Right) ? Stance::Left : Stance::Right;
 }
 
-Vec4 slopeSwingOffset(const Model& model, const GaitMotion<double>& mo, double slope) {
+Vec4 slopeSwingOffset(const Model& model, const GaitMotion<double>& mo, double slope,
+                      double shortening) {
   const Vec5 zero = Vec5::Zero();
   const Vec2 end = chainPoint(model.pinned.foot2, chainState(model, mo.q_fSS, zero));
-  const Vec2 target(end(0), end(1) + end(0) * std::tan(slope));
+  const double length = (1.0 - shortening) * end(0);
+  const Vec2 target(length, end(1) + length * std::tan(slope));
   Vec5 q = mo.q_fSS;
   // Newton on the swing leg's (δ3, δ4): the trunk, the stance leg and so α keep their path.
   for (int k = 0; k < 8; ++k) {
@@ -224,6 +221,16 @@ Vec4 slopeSwingOffset(const Model& model, const GaitMotion<double>& mo, double s
   Vec4 offset = Vec4::Zero();
   offset.tail<2>() = q.tail<2>() - mo.q_fSS.tail<2>();
   return offset;
+}
+
+// The swing foot's end on the slope measured at the last touchdown, 0 on level ground. Uphill
+// the foot meets the rising ground at the planned step length instead of early, with its
+// planned forward speed (an impact that lifts the rear foot). Downhill it lands on the lower
+// ground, kDownhillShortening of the step short of the planned length: the step descends less
+// (m g L sin γ per step) and lands before the robot has turned past the double support's end.
+Vec4 Walker::slopeSwingEnd() const {
+  if (std::abs(slope_) <= options_.slope_deadband) return Vec4::Zero();
+  return slopeSwingOffset(model_, gait_.motion, slope_, slope_ < 0.0 ? kDownhillShortening : 0.0);
 }
 
 double groundSlopeBetweenFeet(const Model& model, const Vec5& q) {

@@ -1,4 +1,4 @@
-// The walker on inclined ground: the swing foot's end raised by the slope (slopeSwingOffset,
+// The walker on inclined ground: the swing foot's end moved onto the slope (slopeSwingOffset,
 // ControllerOptions::swing_end_offset), the rear foot put back on the ground after a touchdown on
 // rising ground lifted it (recontactControl, Walker::switchPhase).
 #include <catch2/catch.hpp>
@@ -36,6 +36,13 @@ TEST_CASE("Swing offset puts the swing foot's end on the inclined ground at the 
     CHECK(shifted(1) - end(1) == Approx(end(0) * std::tan(gamma)).margin(1e-9));
   }
   CHECK(slopeSwingOffset(g.model, mo, 0.0).isZero(1e-12));
+  // Shortened: on the same inclined line through the stance foot, nearer to it.
+  const double gamma = -0.035, shortening = 0.17;
+  Vec5 q = mo.q_fSS;
+  q.tail<2>() += slopeSwingOffset(g.model, mo, gamma, shortening).tail<2>();
+  const Vec2 shortened = foot2(g.model, q);
+  CHECK(shortened(0) == Approx((1.0 - shortening) * end(0)).margin(1e-9));
+  CHECK(shortened(1) - end(1) == Approx(shortened(0) * std::tan(gamma)).margin(1e-9));
 }
 
 TEST_CASE("Swing offset enters the SS references by the smoothstep of the phase",
@@ -79,7 +86,7 @@ TEST_CASE("Re-contact law brings a lifted rear foot down to its target on the pi
     return recontactControl(law, target, s.q, s.qd).gamma_star;
   };
   const double start = (foot2(g.model, x.q) - target).norm();
-  CHECK(start > 0.009);
+  CHECK(start > 0.007);
   const PinnedState end = simulateSS(g.model, x, torque, 0.15, 2e-4, SignMode::Smooth);
   CHECK((foot2(g.model, end.q) - target).norm() < 0.05 * start);
   // The front leg on its DS references meanwhile.
@@ -149,6 +156,35 @@ TEST_CASE("Walker puts back a rear foot a touchdown on rising ground lifted, not
   CHECK(run(0.035, 1.01 * kRecontactTime, false).after == WalkerPhase::SingleSupport);
   // Level ground: the double support ends on the lost rear foot.
   CHECK(run(0.0, 0.05, true).phase == WalkerPhase::SingleSupport);
+}
+
+TEST_CASE("Walker moves the next swing foot's end onto the slope measured at the touchdown",
+          "[control][walker][slope]") {
+  const DefaultGait g;
+  const GaitMotion<double>& mo = g.evaluation.motion;
+  const WalkerOptions o = walkerOptionsFor(g.gait.options, g.model);
+  // The swing outputs' shift at the end of the single support after a touchdown on ground
+  // inclined by gamma, against the offset of the slope the touchdown measures.
+  const auto check = [&](double gamma, double shortening) {
+    Walker w(g.model, g.evaluation, g.gait.options.parameterisation, o);
+    w.torques(w.initialState());
+    Vec5 q, qd;
+    ssState(mo, mo.alpha_fSS, mo.alphadot_fSS, q, qd);
+    q.tail<2>() += slopeSwingOffset(g.model, mo, gamma).tail<2>();
+    const double measured_slope = groundSlopeBetweenFeet(g.model, q);
+    w.torques(measured(g.model, q, qd, Stance::Left, 0.0, {true, true}, 0.6));
+    // The rear foot off 30 ms later at the gait's start state: the single support starts.
+    ssState(mo, mo.q_iSS(0), mo.alphadot_iSS, q, qd);
+    w.torques(measured(g.model, q, qd, Stance::Right, 0.3, {false, true}, 0.63));
+    REQUIRE(w.phase() == WalkerPhase::SingleSupport);
+    ssState(mo, mo.alpha_fSS, mo.alphadot_fSS, q, qd);
+    const Vec4 error = w.torques(measured(g.model, q, qd, Stance::Right, 0.3, {false, true}, 1.2)).law.error;
+    const Vec4 offset = slopeSwingOffset(g.model, mo, measured_slope, shortening);
+    CHECK(offset.tail<2>().norm() > 0.01);
+    CHECK((error.tail<2>() + offset.tail<2>()).norm() < 1e-9);
+  };
+  check(0.035, 0.0);
+  check(-0.035, kDownhillShortening);
 }
 
 }  // namespace gaitopt::test
