@@ -178,7 +178,8 @@ TEST_CASE("Walker moves the next swing foot's end onto the slope measured at the
     w.torques(measured(g.model, q, qd, Stance::Right, 0.3, {false, true}, 0.63));
     REQUIRE(w.phase() == WalkerPhase::SingleSupport);
     ssState(mo, mo.alpha_fSS, mo.alphadot_fSS, q, qd);
-    const Vec4 error = w.torques(measured(g.model, q, qd, Stance::Right, 0.3, {false, true}, 1.2)).law.error;
+    const Vec4 error =
+        w.torques(measured(g.model, q, qd, Stance::Right, 0.3, {false, true}, 1.2)).law.error;
     const Vec4 offset = slopeSwingOffset(g.model, mo, measured_slope, shortening);
     CHECK(offset.tail<2>().norm() > 0.01);
     CHECK((error.tail<2>() + offset.tail<2>()).norm() < 1e-9);
