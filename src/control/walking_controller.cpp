@@ -99,27 +99,23 @@ PolyValue<double> plannedSsReference(const WalkingController& s, int j, double a
           -f.first * decay * sigma / kHoldLength};
 }
 
-// SS input–output linearisation: Γ with B A⁻¹ D_Γ Γ = ÿ* + δ_d'' α̇² + B A⁻¹ (C + G), where
-// y = δ − δ_d(α), ẏ = B q̇, B = [−δ_d'(α) | I], ÿ* = −ω² y − 2ω ẏ. With touchdown by foot
-// height, α may pass α_fSS before the foot lands: the polynomials δ_d are then extrapolated
-// for an impact landing (the thesis freezes them at α_fSS, §4.3.1.3, which steps the
-// reference's slope and makes the PD demand a torque spike) and held for a zero-velocity
-// landing (ControllerOptions::hold_references_past_fss: only the freeze brings its foot down).
-Vec4 ssControl(const WalkingController& s, const Vec5& q, const Vec5& qd, ControlOutput& e) {
+// Four outputs y of the pinned model, affine in the accelerations: ẏ = B q̇ − ȯ, ÿ = B q̈ − c
+// (c the part quadratic in q̇), with the offsets o(t) of the options on their rows.
+struct PinnedOutputs {
+  Eigen::Matrix<double, 4, 5> B = Eigen::Matrix<double, 4, 5>::Zero();
+  Vec4 c = Vec4::Zero();
+};
+
+// Input–output linearisation of four outputs on the pinned model (one foot on the ground):
+// Γ with B A⁻¹ D_Γ Γ = ÿ* + c + B A⁻¹ (C + G), ÿ* = −ω² y − 2ω ẏ (+ the offsets' ȯ, ö), then
+// the projection (4.57).
+Vec4 outputControl(const WalkingController& s, const Vec5& q, const Vec5& qd,
+                   const PinnedOutputs& y, ControlOutput& e) {
   const Model& c = s.controller;
   const PinnedTerms<double> t = pinnedTerms(c, q, qd);
-  Eigen::Matrix<double, 4, 5> B = Eigen::Matrix<double, 4, 5>::Zero();
-  Vec4 curvature;
-  for (int j = 0; j < 4; ++j) {
-    const PolyValue<double> v = plannedSsReference(s, j, q(0));
-    B(j, 0) = -v.first;
-    B(j, j + 1) = 1.0;
-    e.error(j) = q(j + 1) - v.value - s.options.timed_offset.value(j);
-    curvature(j) = v.second * qd(0) * qd(0);
-  }
   const Eigen::LDLT<Mat5> A(t.A);
-  const Eigen::Matrix4d Lg = B * A.solve(c.D_Gamma);
-  const Vec4 drift = curvature + B * A.solve(Vec5(t.C + t.G));
+  const Eigen::Matrix4d Lg = y.B * A.solve(c.D_Gamma);
+  const Vec4 drift = y.c + y.B * A.solve(Vec5(t.C + t.G));
   const Eigen::PartialPivLU<Eigen::Matrix4d> lu(Lg);
   const Vec4 friction = frictionTorque(c, jointSpeeds(qd), SignMode::Smooth);
   const auto response = [&](const Vec4& v) {
@@ -133,13 +129,69 @@ Vec4 ssControl(const WalkingController& s, const Vec5& q, const Vec5& qd, Contro
   };
   const PdGains k = pdGains(s.options);
   const TimedOffset& o = s.options.timed_offset;
-  const Vec4 v_d = -k.kp * e.error - k.kd * (B * qd) + (k.kd * o.rate + o.acceleration);
+  const Vec4 v_d = -k.kp * e.error - k.kd * (y.B * qd) + (k.kd * o.rate + o.acceleration);
   if (!s.options.torque_limits) return response(v_d).gamma_star;
   const Projected p = projectInputs(response, v_d, Vec4::Ones(), torqueLimits(s, qd),
                                     contactLimits(s), false);
   e.saturated = p.saturated;
   e.projection_infeasible = p.infeasible;
   return response(p.v).gamma_star;
+}
+
+// The smoothstep 3s² − 2s³ of the SS phase s(α), clamped to [0, 1], with its α-derivatives:
+// the weight of ControllerOptions::swing_end_offset.
+PolyValue<double> swingEndBlend(const GaitMotion<double>& mo, double alpha) {
+  const double range = mo.alpha_fSS - mo.q_iSS(0), u = (alpha - mo.q_iSS(0)) / range;
+  if (u <= 0.0) return {0.0, 0.0, 0.0};
+  if (u >= 1.0) return {1.0, 0.0, 0.0};
+  return {u * u * (3.0 - 2.0 * u), 6.0 * u * (1.0 - u) / range,
+          (6.0 - 12.0 * u) / (range * range)};
+}
+
+// SS: the virtual constraints y = δ − δ_d(α), B = [−δ_d'(α) | I], c = δ_d'' α̇². With touchdown
+// by foot height, α may pass α_fSS before the foot lands: the polynomials δ_d are then
+// extrapolated for an impact landing (the thesis freezes them at α_fSS, §4.3.1.3, which steps
+// the reference's slope and makes the PD demand a torque spike) and held for a zero-velocity
+// landing (ControllerOptions::hold_references_past_fss: only the freeze brings its foot down).
+Vec4 ssControl(const WalkingController& s, const Vec5& q, const Vec5& qd, ControlOutput& e) {
+  PinnedOutputs y;
+  const PolyValue<double> blend = swingEndBlend(s.motion, q(0));
+  for (int j = 0; j < 4; ++j) {
+    PolyValue<double> v = plannedSsReference(s, j, q(0));
+    const double end = s.options.swing_end_offset(j);
+    v = {v.value + end * blend.value, v.first + end * blend.first, v.second + end * blend.second};
+    y.B(j, 0) = -v.first;
+    y.B(j, j + 1) = 1.0;
+    e.error(j) = q(j + 1) - v.value - s.options.timed_offset.value(j);
+    y.c(j) = v.second * qd(0) * qd(0);
+  }
+  return outputControl(s, q, qd, y, e);
+}
+
+// Re-contact: the DS references of δ1, δ2 at the measured α (with their offsets) and the foot-2
+// point driven to `target` in the pinned frame (rows ÿ = D2 q̈ + H2: c = −H2).
+Vec4 recontactControl(const WalkingController& s, const Vec2& target, const Vec5& q,
+                      const Vec5& qd, ControlOutput& e) {
+  const GaitMotion<double>& mo = s.motion;
+  const Model& m = s.controller;
+  const ChainState<double> st = chainState(m, q, qd);
+  const TimedOffset& o = s.options.timed_offset;
+  PinnedOutputs y;
+  const PolyValue<double> d[2] = {mo.ds_delta1(q(0)), mo.ds_delta2(q(0))};
+  for (int j = 0; j < 2; ++j) {
+    y.B(j, 0) = -d[j].first;
+    y.B(j, j + 1) = 1.0;
+    e.error(j) = q(j + 1) - d[j].value - o.value(j);
+    y.c(j) = d[j].second * qd(0) * qd(0);
+  }
+  y.B.bottomRows<2>() = chainPointJacobian(m, m.pinned.foot2, st);
+  y.c.tail<2>() = -chainPointBias(m.pinned.foot2, st);
+  e.error.tail<2>() = chainPoint(m.pinned.foot2, st) - target;
+  ControllerOptions options = s.options;
+  options.timed_offset.value.tail<2>().setZero();
+  options.timed_offset.rate.tail<2>().setZero();
+  options.timed_offset.acceleration.tail<2>().setZero();
+  return outputControl({mo, m, options}, q, qd, y, e);
 }
 
 // Weight of the δ1, δ2 output accelerations against α̈ in the time-optimal projection: the
@@ -272,6 +324,13 @@ DsReference dsReference(const WalkingController& s, double t, const Vec5& q, con
 ControlOutput singleSupportControl(const WalkingController& s, const Vec5& q, const Vec5& qd) {
   ControlOutput e;
   e.gamma_star = ssControl(s, q, qd, e);
+  return e;
+}
+
+ControlOutput recontactControl(const WalkingController& s, const Vec2& target, const Vec5& q,
+                               const Vec5& qd) {
+  ControlOutput e;
+  e.gamma_star = recontactControl(s, target, q, qd, e);
   return e;
 }
 

@@ -73,7 +73,7 @@ typedef struct {
  *                  error, summed over the steps, >= 0 (with a double support the lean acts
  *                  once the double support's rate correction is at its bound)
  *   max_lean       default 0.6: bound of the trunk lean [rad], > 0
- *   slope_compensation  default 1: scale of the trunk lean that compensates the slope
+ *   slope_compensation  default 1: scale of the trunk lean that compensates a downhill slope
  *                  measured between the feet at each touchdown, >= 0 (0: off)
  *   slope_deadband default 0.005: a measured slope within +- this [rad] is level, >= 0
  *   apex_energy_fraction  default 0.5: the single support must pass over the stance foot

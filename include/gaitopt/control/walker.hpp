@@ -3,7 +3,8 @@
 // the state a robot measures (trunk pitch, joint-side motor angles, foot contacts), sampled at
 // any rate ≥ 500 Hz. It keeps the phase of the walk itself: single support on the leg in
 // contact, double support from the swing foot's contact event (not from time or the phase
-// variable) until α reaches the gait's lift-off angle, and a fall when the robot leaves the
+// variable) until α reaches the gait's lift-off angle (with the rear foot put back on the
+// ground when a touchdown on rising ground lifted it), and a fall when the robot leaves the
 // region the gait can recover from. The C interface (control/walker.h) wraps this class.
 #include <array>
 
@@ -52,8 +53,11 @@ struct WalkerOptions : ControllerOptions {
   double lean_integral_gain = 0.05;
   double max_lean = 0.6;
   // Slope compensation: at each touchdown the ground's inclination γ is measured between the
-  // feet, and the trunk leans by −slope_compensation × (z_c / ∂x_c/∂pitch) γ (back downhill),
-  // added to the regulation's lean; a slope within ±slope_deadband [rad] is level ground.
+  // feet, and the next swing foot's end is moved onto the inclined ground (Walker::slopeSwingEnd:
+  // raised uphill at the planned step length, lowered and kDownhillShortening shorter
+  // downhill). Downhill the trunk also leans back by −slope_compensation × (z_c / ∂x_c/∂pitch)
+  // γ, added to the regulation's lean; uphill a rear foot the touchdown lifted is put back on
+  // the ground (Walker::switchPhase). A slope within ±slope_deadband [rad] is level ground.
   double slope_compensation = 1.0;
   double slope_deadband = 0.005;
   // Single-support energy (control/apex_energy.hpp): the gait's zero dynamics predict from the
@@ -78,6 +82,25 @@ constexpr double kWalkerNormalForceFraction = 0.3;
 // The longest double support [planned durations] the walker holds for the single support's
 // energy (WalkerOptions::apex_energy_fraction): below the fall judgement's stall_factor.
 constexpr double kMaxDsExtension = 3.0;
+
+// Rear-foot re-contact (Walker::switchPhase): the target lies this far [m] below the point where
+// the foot left the ground, so the PD brings it down at a small speed instead of stopping short
+// of the ground; the re-contact is given up after kRecontactTime [s] (a single support follows).
+// Measured on 0.035 rad uphill: with 2 mm the 0.75 m/s C&A gait stalls at its first step, with
+// 5 mm the default gait walks 3.3 % slow; with 3 mm the 0.5, 0.8 and C&A 0.75 m/s gaits walk
+// within 1.1 % of their speed.
+constexpr double kRecontactDepth = 0.003;
+constexpr double kRecontactTime = 0.15;
+
+// Downhill step shortening (Walker::slopeSwingEnd): the fraction of the planned step length
+// the swing foot lands short on ground sloping down. Measured in MuJoCo on 0.035 rad downhill
+// (100 steps, the seven shipped gaits): all walk with 0.16 to 0.18; 0.15 loses the 0.5 m/s
+// impact gait (stalls), 0.19 and 0.2 the 0.3 m/s gait (−5.2 % at 0.2), 0.1 the impact gaits
+// of Chessé and the default robot; on 0.02 and 0.01 rad 6 of 7 walk with 0.17, 5 of 7 without
+// shortening or lowering. Proportional to the slope (8 |γ|, at most 0.17) walked 4 of 7 on
+// 0.02 rad: the gaits' speed regulation is sensitive to the step length changing with each
+// touchdown's slope measurement.
+constexpr double kDownhillShortening = 0.17;
 
 // The trunk lean of the speed regulation (Walker::regulateLean) moves from the previous step's
 // to the new one over this fraction of the gait's T_SS after the touchdown.
@@ -125,6 +148,13 @@ class Walker {
   double speed_error_sum_ = 0.0;             // Σ (step speed / gait speed − 1)
   int steps_ = 0;
   DsReference ds_;
+  // In DS: the rear foot is being put back on the ground (recontactControl) at rear_target_
+  // (pinned frame of the front foot); at most once per double support.
+  bool recontact_ = false, recontacted_ = false;
+  double recontact_start_ = 0.0;
+  Vec2 rear_target_ = Vec2::Zero();
+  double liftoff_energy_gain_ = 1.0;
+  void measureLiftOffEnergy(const Vec5& q, const Vec5& qd);  // at lift-off: liftoff_energy_gain_
 
   WalkingController law() const { return {gait_.motion, model_, options_}; }
   double phaseProgress(double alpha) const;  // s of the SS: 0 at α_iSS, 1 at α_fSS
@@ -147,6 +177,7 @@ class Walker {
   double slope_ = 0.0;             // the ground's inclination measured at the last touchdown
   double slope_lean_ratio_ = 0.0;  // trunk lean per radian of slope (walker.cpp)
   double slopeLean() const;
+  Vec4 slopeSwingEnd() const;  // the swing foot's end offsets for slope_
   ApexEnergy apex_;
   double apexRatio(const Vec5& q, const Vec5& qd) const;  // σ_apex² from (q, q̇) / the gait's
   TimedOffset referenceOffset(double t) const;            // the law's timed offset at t
@@ -160,6 +191,13 @@ void pinnedStateOf(const WalkerState& s, Stance leg1, Vec5& q, Vec5& qd);
 // (α absolute, both feet on the ground): the direction from foot 1 to foot 2. The walker
 // measures it at each touchdown.
 double groundSlopeBetweenFeet(const Model& model, const Vec5& q);
+
+// The offsets (leg-1 order, on the swing leg's δ3, δ4) that move the swing foot's end of the
+// gait's single support (q_fSS) onto ground inclined by `slope` (+ uphill) through the stance
+// foot, at (1 − shortening) times the planned step length (ControllerOptions::swing_end_offset;
+// the walker sets it from the slope measured at each touchdown, Walker::slopeSwingEnd).
+Vec4 slopeSwingOffset(const Model& model, const GaitMotion<double>& motion, double slope,
+                      double shortening = 0.0);
 
 // Leg-1 joint order (knee 1, hip 1, hip 2, knee 2) ↔ physical order: an involution.
 Vec4 physicalOrder(const Vec4& leg_order, Stance leg1);

@@ -63,6 +63,11 @@ struct ControllerOptions {
   // reference, and also when the phase variable stalls (control/walker.hpp: the trunk lean
   // of the single-support speed regulation).
   TimedOffset timed_offset;
+  // Offsets (leg-1 order) reached by the SS references at α_fSS: added to δ_d(α) times the
+  // smoothstep 3s² − 2s³ of the phase s (0 at α_iSS, 1 at α_fSS and held past it), so the
+  // single support starts on the planned path and ends on the shifted one (control/walker.hpp:
+  // the swing foot's end raised or lowered with the ground's slope).
+  Vec4 swing_end_offset = Vec4::Zero();
 };
 
 struct PdGains {
@@ -99,6 +104,12 @@ struct ControlOutput {
 
 // The law at the state (q, q̇) of the pinned model (leg 1 the stance leg).
 ControlOutput singleSupportControl(const WalkingController& s, const Vec5& q, const Vec5& qd);
+// A double support whose rear foot (foot 2, leg 1 the front leg) has left the ground: the front
+// leg's DS references δ_d1,2(α) kept and foot 2 driven to `target` (pinned frame, foot 1 at the
+// origin) by the same input–output linearisation as the single support, with the front foot's
+// contact constraints in the projection (control/walker.hpp: the rear foot's re-contact).
+ControlOutput recontactControl(const WalkingController& s, const Vec2& target, const Vec5& q,
+                               const Vec5& qd);
 // The law at the state of the double support (leg 1 the front leg, both feet on the ground).
 ControlOutput doubleSupportControl(const WalkingController& s, const DsReference& ds, double t,
                                    const Vec5& q, const Vec5& qd);
