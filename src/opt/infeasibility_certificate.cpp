@@ -100,15 +100,21 @@ std::string subRowName(int group, int sub) {
 
 // Rows within this (scaled) of their bound count as active at the elastic optimum.
 constexpr double kActiveTol = 1e-4;
+
+// The active tolerance at a point whose elastic variable is s: at most half of s, so that a
+// row met exactly (g = 0, e.g. a friction cone held by the DS force split's clamp, whose
+// gradient vanishes) is not taken as one at s* when s* is small.
+double activeTolerance(double s) { return std::min(kActiveTol, 0.5 * std::max(s, 0.0)); }
+
 // A least-squares multiplier vector with a larger relative stationarity residual is no
 // certificate.
 constexpr double kStationarityTol = 1e-3;
 
-// The multipliers λ ≥ 0 of the rows active at x (the equality rows' of either sign), by
-// non-negative least squares on ∇f + Jᵀλ + μ = 0 (the other rows' zero; μ those of the
-// variables at a bound), each variable scaled by its bound range; false when x is not a
-// first-order point (relative residual above kStationarityTol).
-bool activeMultipliers(NlpProblem& problem, const VectorX& x, VectorX& lambda) {
+// The multipliers λ ≥ 0 of the rows within `tol` of their bound at x (the equality rows' of
+// either sign), by non-negative least squares on ∇f + Jᵀλ + μ = 0 (the other rows' zero; μ
+// those of the variables at a bound), each variable scaled by its bound range; false when x is
+// not a first-order point (relative residual above kStationarityTol).
+bool activeMultipliers(NlpProblem& problem, const VectorX& x, double tol, VectorX& lambda) {
   VectorX g, lower, upper, grad;
   MatrixX jac;
   if (!problem.constraints(x, g) || !problem.constraintJacobian(x, jac) ||
@@ -121,13 +127,13 @@ bool activeMultipliers(NlpProblem& problem, const VectorX& x, VectorX& lambda) {
   std::vector<std::pair<int, double>> columns;
   for (int i = 0; i < g.size(); ++i) {
     if (lower(i) == upper(i)) columns.push_back({i, -1.0});
-    if (lower(i) == upper(i) || g(i) >= upper(i) - kActiveTol) columns.push_back({i, 1.0});
+    if (lower(i) == upper(i) || g(i) >= upper(i) - tol) columns.push_back({i, 1.0});
   }
   // And the variables at a bound (their multipliers are not reported).
   std::vector<std::pair<int, double>> bounds;
   for (int j = 0; j < x.size(); ++j) {
-    if (x(j) <= v.lower(j) + kActiveTol * D(j)) bounds.push_back({j, -1.0});
-    if (x(j) >= v.upper(j) - kActiveTol * D(j)) bounds.push_back({j, 1.0});
+    if (x(j) <= v.lower(j) + tol * D(j)) bounds.push_back({j, -1.0});
+    if (x(j) >= v.upper(j) - tol * D(j)) bounds.push_back({j, 1.0});
   }
   MatrixX A = MatrixX::Zero(x.size(), columns.size() + bounds.size());
   for (std::size_t j = 0; j < columns.size(); ++j)
@@ -228,15 +234,18 @@ ElasticSolve solveElastic(GaitEvaluationCache& cache, const GaitParameters& star
         elasticProblem(cache, out.x, level5, speed, between);
     const NlpSolution sol = solveWithNlopt(*problem, settings, NloptMethod::Slsqp);
     out.iterations += sol.iterations;
-    const bool lower = sol.x(n) < out.x(n) - kActiveTol;
-    out.x = sol.x;
-    out.stationary =
-        sol.status == NlpStatus::Solved && activeMultipliers(*problem, out.x, out.lambda);
+    const bool computed = rows->values(sol.x.head(n), out.rows);
+    out.worst = computed && out.rows.size() > 0 ? out.rows.maxCoeff() : kMaxViolation;
+    // SLSQP can end with s below the rows it bounds (measured: s = 0 with a row at +1.03),
+    // where any row met exactly would be active and the bound s ≥ 0 would absorb ∂/∂s. The
+    // elastic problem's value at p is its worst row: the multipliers are taken there.
+    const double s = std::max(out.worst, kLowestViolation);
+    const bool lower = s < out.x(n) - kActiveTol;
+    out.x << sol.x.head(n), s;
+    out.stationary = computed && sol.status == NlpStatus::Solved &&
+                     activeMultipliers(*problem, out.x, activeTolerance(s), out.lambda);
     if (!lower && solve > 0) break;
   }
-  const bool computed = rows->values(out.x.head(n), out.rows);
-  out.worst = computed && out.rows.size() > 0 ? out.rows.maxCoeff() : kMaxViolation;
-  out.stationary = out.stationary && computed;
   return out;
 }
 

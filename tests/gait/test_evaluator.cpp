@@ -18,6 +18,7 @@
 #include "gaitopt/model/inverse_dynamics.hpp"
 #include "gaitopt/model/joint_friction.hpp"
 #include "gaitopt/gait/leg_geometry.hpp"
+#include "gaitopt/math/chebyshev_maxima.hpp"
 #include "test_gait_support.hpp"
 #include "test_gradient_check.hpp"
 
@@ -389,7 +390,9 @@ TEST_CASE("the alphadot_iSS saturation (3.56) lets the SS pass over the foot", "
   }
   const double f_i = std::max(pinnedTerms(m, q, qs).A.row(0).dot(qs), o.f_min);
   CHECK(f_i == Approx(mo.f_iSS).epsilon(1e-12));
-  const double phi_min = mo.ss_phi.minCoeff();
+  // min Φ over the whole SS, between the nodes too.
+  const double phi_min = interpolantMinimum(ev.ssGrid(), mo.ss_phi);
+  CHECK(phi_min <= mo.ss_phi.minCoeff());
   REQUIRE(phi_min < 0.0);  // the CoM must be carried over the stance foot
   const double a_min = -std::sqrt(-phi_min) / f_i;
   report("level 3: unsaturated minimum alphadot_iSS", a_min);

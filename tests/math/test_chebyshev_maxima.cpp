@@ -3,6 +3,7 @@
 // differences of the maximum itself.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -113,4 +114,36 @@ TEST_CASE("maximum on a sub-interval equals a dense scan of the interpolant",
   }
   CHECK(interior >= 2);
   CHECK(at_end >= 2);
+}
+
+TEST_CASE("the interpolant's minimum equals a dense scan, its AD gradient finite differences",
+          "[gait][chebyshev_maxima]") {
+  using AD = Eigen::AutoDiffScalar<Eigen::Vector3d>;
+  const ChebyshevGrid grid(9);
+  // p0 sin(3s + p1) + p2 s² dips between two nodes for these parameters.
+  const Eigen::Vector3d p(0.9, 0.4, 0.3);
+  const Eigen::VectorXd v = sampled(grid, p);
+  const double low = gaitopt::interpolantMinimum(grid, v);
+  double scan = INFINITY;
+  for (int i = 0; i <= 40000; ++i) scan = std::min(scan, grid.interpolate(v, -1.0 + i / 20000.0));
+  INFO("minimum " << low << ", scan " << scan << ", lowest node " << v.minCoeff());
+  CHECK(low <= scan + 1e-12);
+  CHECK(low >= scan - 1e-9);
+  CHECK(low < v.minCoeff() - 1e-3);  // the minimum lies between the nodes
+  // AD values: d/dp of the minimum, the minimiser held fixed (envelope theorem).
+  const Eigen::MatrixXd jac = sampledJacobian(grid, p);
+  Eigen::Matrix<AD, Eigen::Dynamic, 1> v_ad(grid.size());
+  for (int k = 0; k < grid.size(); ++k) v_ad[k] = AD(v[k], jac.row(k).transpose());
+  const AD low_ad = gaitopt::interpolantMinimum(grid, v_ad);
+  CHECK(low_ad.value() == low);
+  const double h = 1e-6;
+  for (int i = 0; i < 3; ++i) {
+    Eigen::Vector3d up = p, down = p;
+    up[i] += h;
+    down[i] -= h;
+    const double fd = (gaitopt::interpolantMinimum(grid, sampled(grid, up)) -
+                       gaitopt::interpolantMinimum(grid, sampled(grid, down))) / (2.0 * h);
+    INFO("parameter " << i);
+    CHECK(low_ad.derivatives()[i] == Approx(fd).margin(1e-7));
+  }
 }

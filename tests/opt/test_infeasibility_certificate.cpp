@@ -1,11 +1,15 @@
 // The elastic problem of opt/infeasibility_certificate.hpp: a speed made infeasible for an
 // independent reason (a joint-limit margin wider than half a knee's range: no knee angle
 // meets both of its rows) is certified with the knee rows blocking and s* at least the margin's
-// excess; a feasible optimum gives no certificate; row names.
+// excess; a feasible optimum gives no certificate; at every first-order point with s* > 0 the
+// blocking rows are at s*; row names.
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "gaitopt/io/gait_file.hpp"
+#include "gaitopt/opt/gait_problem.hpp"
 #include "gaitopt/opt/infeasibility_certificate.hpp"
+#include "gaitopt/opt/initial_guess.hpp"
 #include "test_gait_support.hpp"
 
 namespace gaitopt::test {
@@ -55,6 +59,48 @@ TEST_CASE("Elastic problem: an optimum's rows can be met, no certificate", "[cer
   CHECK_FALSE(c.infeasible());
   CHECK(c.blocking.empty());
   CHECK(std::abs(ev.evaluate(c.x).speed - 0.5) <= kFeasibilityTolerance);
+}
+
+TEST_CASE("Elastic problem: a first-order point with s* > 0 has its blocking rows at s*",
+          "[certificate]") {
+  // Starts from which SLSQP ended the elastic problem with s = 0 below rows it left unmet
+  // (+0.47 scaled), or with a row met exactly (g = 0, a friction cone held by the DS force
+  // split's clamp, zero gradient) taken as blocking; and the knee margin no angle meets.
+  const GaitFile g = loadGaitFile(sourcePath("configs/gait/default_step.yaml"));
+  const GaitEvaluator step(g.robot, g.options, g.model_options);
+  GaitOptions margin = viscousOptions();
+  const RobotParams robot = robotFile("rabbit_miossec");
+  margin.joint_limit_margin = 0.5 * (robot.limits.knee_max - robot.limits.knee_min) + 0.05;
+  const GaitEvaluator knees(robot, margin);
+  const struct {
+    const GaitEvaluator& ev;
+    GaitParameters start;
+    double speed;
+  } cases[] = {{step, defaultInitialGuess(step.model(), 0.10), 0.10},
+               {step, g.parameters, 0.15},
+               {step, g.parameters, 0.10},
+               {knees, optimalStep(), 0.5}};
+  int certified = 0;
+  for (const auto& c : cases) {
+    const InfeasibilityCertificate cert = minimiseViolation(c.ev, c.start, c.speed, 1000);
+    INFO("v " << c.speed << ": s* " << cert.min_violation << ", converged " << cert.converged
+              << ", " << cert.blocking.size() << " blocking rows");
+    if (!cert.converged || cert.min_violation <= kFeasibilityTolerance) continue;
+    // s > 0 at a first-order point: ∂/∂s of the Lagrangian puts Σ λ = 1 on rows at s*.
+    REQUIRE(cert.infeasible());
+    ++certified;
+    double sum = 0.0;
+    for (const BlockingConstraint& b : cert.blocking) {
+      const double scaled = b.value / constraintScale(c.ev.layout(), c.ev.model(), b.entry);
+      INFO(b.name << ": " << b.value << " " << b.unit << ", multiplier " << b.multiplier);
+      CHECK(scaled >= 0.5 * cert.min_violation);
+      CHECK(scaled <= cert.min_violation + 1e-12);
+      sum += b.multiplier;
+    }
+    CHECK(sum >= 0.9);
+    CHECK(sum <= 1.0 + 1e-6);
+  }
+  CHECK(certified >= 1);  // the knee margin
 }
 
 TEST_CASE("constraintRowName: group, joint or foot, side, node", "[certificate]") {

@@ -10,6 +10,7 @@
 #include "gaitopt/gait/constraints/zero_dynamics.hpp"
 #include "gaitopt/gait/evaluation_context.hpp"
 #include "gaitopt/math/chebyshev.hpp"
+#include "gaitopt/math/chebyshev_maxima.hpp"
 #include "gaitopt/model/inverse_dynamics.hpp"
 
 namespace gaitopt::detail {
@@ -150,13 +151,13 @@ template <class S> void zeroDynamicsStage(EvalContext<S>& c, std::vector<SsPathP
   const bool cyclic_ss = !o.parameterisation.hasDoubleSupport();
   const S a_i = cyclic_ss ? cyclicStartRate(c, pts, st3) : c.p(kAlphadotISS);
   if (!cyclic_ss) c.set(kAlphadotNegative, 0, alphadotNegativeRow(a_i, o.alphadot_margin), st3);
-  int worst = 0;
-  for (int k = 0; k < n; ++k) {
+  for (int k = 0; k < n; ++k)
     c.set(kNoFallBack, k, noFallBackRow(S(mo.ss_phi(k)), mo.f_iSS, a_i, o.alphadot_margin), st3);
-    if (valueOf(mo.ss_phi(k)) < valueOf(mo.ss_phi(worst))) worst = k;
-  }
-  // (3.56), with the corrected sign of ε (α̇ < 0).
-  const S phi_min = mo.ss_phi(worst);
+  // (3.56), with the corrected sign of ε (α̇ < 0). Φ_min is the minimum of Φ's interpolant
+  // over the whole SS, not its smallest node value: that one depends on the grid (a finer grid
+  // finds a lower Φ between two nodes), and so would α̇_iSS, the speed and every force wherever
+  // the cap binds.
+  const S phi_min = interpolantMinimum(c.ss_grid, mo.ss_phi);
   const S a_min = valueOf(phi_min) < 0.0 ? S(-sqrt(S(-phi_min)) / mo.f_iSS) : S(0.0);
   const S a_cap = a_min - o.alphadot_margin;
   mo.alphadot_iSS = valueOf(a_i) < valueOf(a_cap) ? a_i : a_cap;

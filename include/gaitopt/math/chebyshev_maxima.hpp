@@ -2,7 +2,9 @@
 // Maxima of a Chebyshev interpolant between its nodes. A semi-infinite constraint sampled at
 // the Chebyshev–Lobatto nodes of its phase has the interpolant G(s) = Σ_k l_k(s) g_k; its
 // maximum over [s_{k+1}, s_k] is the constraint's value between those two nodes, and by the
-// envelope theorem its gradient is Σ_k l_k(s*) ∇g_k (at a node, the node's own row).
+// envelope theorem its gradient is Σ_k l_k(s*) ∇g_k (at a node, the node's own row). The
+// minimum over the whole grid follows from the maxima of −g.
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -38,5 +40,18 @@ class IntervalMaxima {
   Eigen::VectorXd sample_s_;  // interior sample points, kSamples − 1 per interval
   Eigen::MatrixXd sample_;    // interpolation matrix onto them
 };
+
+// Minimum of the interpolant of `values` over [−1, 1] (nodes included): the lowest of the
+// interval maxima of −values. The values may be AD scalars: the minimiser s* is located on the
+// plain values and held fixed, so the derivatives are l(s*)·∇values (the envelope theorem).
+template <class Vec>
+ValueTypeOf<Vec> interpolantMinimum(const ChebyshevGrid& grid, const Vec& values) {
+  Eigen::VectorXd negated(grid.size());
+  for (int k = 0; k < grid.size(); ++k) negated[k] = -valueOf(values[k]);
+  InterpolantMaximum lowest{0.0, -std::numeric_limits<double>::infinity()};
+  for (const InterpolantMaximum& m : IntervalMaxima(grid)(negated))
+    if (m.value > lowest.value) lowest = m;
+  return grid.interpolate(values, lowest.s);
+}
 
 }  // namespace gaitopt
