@@ -153,8 +153,8 @@ class Walker {
   bool recontact_ = false, recontacted_ = false;
   double recontact_start_ = 0.0;
   Vec2 rear_target_ = Vec2::Zero();
-  double liftoff_energy_gain_ = 1.0;
-  void measureLiftOffEnergy(const Vec5& q, const Vec5& qd);  // at lift-off: liftoff_energy_gain_
+  double liftoff_energy_excess_ = 0.0;  // σ² [(kg m²/s)²]
+  void measureLiftOffEnergy(const Vec5& q, const Vec5& qd);  // at lift-off: liftoff_energy_excess_
 
   WalkingController law() const { return {gait_.motion, model_, options_}; }
   double phaseProgress(double alpha) const;  // s of the SS: 0 at α_iSS, 1 at α_fSS
