@@ -3,12 +3,15 @@
 # for each gait, exports the robot as MJCF and the gait as JSON into a temporary folder, then
 # walks examples/mujoco_walk (the controller through its C interface) nominally and under ten
 # perturbations, 2 cells at a time. Writes OUT/grid.csv and prints the pass rate; the full grid
-# (the shipped gaits, every case, 100 steps) also replaces the table of the docs page.
+# (the shipped gaits, every case, 100 steps) also replaces the table of the docs page, and the
+# slopes between the grid's (--slopes alone, the shipped gaits, 100 steps) its second table.
 #
-#   scripts/mujoco_grid.sh [--steps N] [--cases LIST] [--jobs J] [--out DIR] [GAIT.yaml...]
+#   scripts/mujoco_grid.sh [--steps N] [--cases LIST | --slopes LIST] [--jobs J] [--out DIR]
+#                          [GAIT.yaml...]
 #
 #   --steps N      steps per cell (default 100)
 #   --cases LIST   comma-separated subset of the cases below (default: all)
+#   --slopes LIST  comma-separated ground slopes [rad], run as the cases slope+X, slope-X instead
 #   --jobs J       cells run in parallel (default 2)
 #   --out DIR      folder of grid.csv and the cells' logs (default build/mujoco_grid)
 #   GAIT.yaml...   gaits (default: the shipped ones below; absent files are skipped with a message)
@@ -47,21 +50,24 @@ declare -A case_args=(
   [gain_x2]="--gain-scale 2"
 )
 
-usage() { sed -n '9,14p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
+usage() { sed -n '9,17p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 steps=100
 jobs=2
 out="$root/build/mujoco_grid"
 cases=("${all_cases[@]}")
 gaits=()
+slopes=()
+cases_given=0
 full=1
 while [ "$#" -gt 0 ]; do
   case "$1" in
     --steps) steps="${2:?}"; full=0; shift 2 ;;
-    --cases) IFS=, read -r -a cases <<<"${2:?}"; full=0; shift 2 ;;
+    --cases) IFS=, read -r -a cases <<<"${2:?}"; full=0; cases_given=1; shift 2 ;;
+    --slopes) IFS=, read -r -a slopes <<<"${2:?}"; shift 2 ;;
     --jobs) jobs="${2:?}"; shift 2 ;;
     --out) out="${2:?}"; shift 2 ;;
     -h|--help) usage ;;
-    --blocks) echo "docs/walking_controller_mujoco.md"; exit 0 ;;  # its generated block
+    --blocks) printf '%s\n' "$doc" "$doc between_slopes"; exit 0 ;;  # its generated blocks
     -*) echo "mujoco_grid: unknown option $1" >&2; usage ;;
     *) gaits+=("$1"); full=0; shift ;;
   esac
@@ -69,6 +75,19 @@ done
 bad() { echo "mujoco_grid: $*" >&2; exit 2; }
 [[ "$steps" =~ ^[1-9][0-9]*$ ]] || bad "--steps: a positive integer, got '$steps'"
 [[ "$jobs" =~ ^[1-9][0-9]*$ ]] || bad "--jobs: a positive integer, got '$jobs'"
+# The slopes between the grid's: cases named slope+X, their own table (block between_slopes).
+key=""
+if [ "${#slopes[@]}" -gt 0 ]; then
+  [ "$cases_given" = 0 ] || bad "--slopes: not with --cases"
+  cases=()
+  for x in "${slopes[@]}"; do
+    [[ "$x" =~ ^[+-]?(0|[1-9][0-9]*)?\.?[0-9]+$ ]] || bad "--slopes: a number in rad, got '$x'"
+    name="slope$(printf '%+g' "$x")"
+    case_args[$name]="--slope $x"
+    cases+=("$name")
+  done
+  key=between_slopes
+fi
 for c in "${cases[@]}"; do
   [ -n "${case_args[$c]+set}" ] || bad "--cases: unknown case '$c' (known: ${all_cases[*]})"
 done
@@ -137,10 +156,10 @@ xargs -r -P "$jobs" -L 1 bash -c 'eval "$case_args_def"; run_cell "$@"' _ <"$tmp
 publish=""
 [ "$full" = 1 ] && publish="$doc"
 DOCS_BLOCKS="$root/scripts/docs_blocks.py" \
-  /usr/bin/python3 - "$out" "$tmp" "$steps" "$publish" "${cases[@]}" <<'EOF'
+  /usr/bin/python3 - "$out" "$tmp" "$steps" "$publish" "$key" "${cases[@]}" <<'EOF'
 import csv, datetime, os, subprocess, sys
 
-out, tmp, steps, doc, cases = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], sys.argv[5:]
+out, tmp, steps, doc, key, cases = sys.argv[1:6] + [sys.argv[6:]]
 def names(file):
     return [g.strip() for g in open(os.path.join(tmp, file)) if g.strip()]
 gaits, absent = names("gaits.txt"), names("absent.txt")
@@ -214,8 +233,9 @@ if doc:
     if absent:
         lines += ["", "Not run (gait file absent): "
                   + ", ".join(f"`{g}.yaml`" for g in absent) + "."]
-    subprocess.run([sys.executable, os.environ["DOCS_BLOCKS"], "write", "scripts/mujoco_grid.sh",
-                    doc], input="\n".join(lines) + "\n", text=True, check=True)
+    block = [doc] + ([key] if key else [])
+    subprocess.run([sys.executable, os.environ["DOCS_BLOCKS"], "write", "scripts/mujoco_grid.sh"]
+                   + block, input="\n".join(lines) + "\n", text=True, check=True)
     print(f"mujoco_grid: table written to {doc}")
 sys.exit(0 if passed == total else 3)
 EOF

@@ -170,9 +170,14 @@ void Walker::switchPhase(const WalkerState& s) {
     return elapsed >= kMaxDsExtension * mo.T_DS ||
            apexRatio(q, qd) >= options_.apex_energy_fraction;
   };
+  // After a re-contact the DS lasts at least T_DS: the outputs left the DS references while the
+  // rear foot was driven back, and a lift-off on rate at once starts a single support off its path
+  // that the apex prediction overrates (the 0.8 m/s gait 0.02 rad uphill lifted off 11 ms after
+  // the re-contact with 0.64 of the gait's energy predicted and fell back).
+  const bool rate_ends = on_rate && !recontacted_;
   const bool ended = options_.ds_control == DsAlphaControl::Cubic
                          ? s.t >= ds_.t_end
-                         : past_end && (on_rate || elapsed >= mo.T_DS) && energetic();
+                         : past_end && (rate_ends || elapsed >= mo.T_DS) && energetic();
   const bool rear_lost = s.t - rear_contact_ >= options_.rear_lift_time;
   if (!ended && rear_lost && !recontacted_ && slope_ > options_.slope_deadband &&
       apexRatio(q, qd) < options_.apex_energy_fraction) {
@@ -267,23 +272,24 @@ double Walker::stepSpeedError(const WalkerState& s) {
 // there, so the lean's second stage sees the bound as a saturation). On a slope the bound
 // counts with the energy the last lift-off delivered above the prediction (measureLiftOffEnergy).
 double Walker::lowestRateScale() const {
-  const double fraction = options_.apex_energy_fraction / liftoff_energy_gain_;
+  const double fraction = options_.apex_energy_fraction - liftoff_energy_excess_ / apex_.gait();
   return std::clamp(apex_.minStartRateScale(start_alpha_, fraction),
                     1.0 - options_.max_rate_correction, 1.0);
 }
 
-// At lift-off: σ_apex² predicted from the measured state over the prediction from the gait's
-// start at the double support's target rate (ApexEnergy::fromStart), when larger, on a slope;
-// 1 on level ground. The start a DS delivers on a slope is off the gait's path (the rear foot
+// At lift-off: σ_apex² predicted from the measured state minus the prediction from the gait's
+// start at the double support's target rate (ApexEnergy::fromStart), when positive, on a slope;
+// 0 on level ground. The start a DS delivers on a slope is off the gait's path (the rear foot
 // lower or higher, the swing foot's end offset), and the path's prediction then undervalues it:
 // measured on the 0.75 m/s C&A gait 0.035 rad uphill, 1.0 of the gait's energy at lift-off for
-// 0.13 predicted at rate scale 0.85, and the bound held the walk at +15 % speed.
+// 0.13 predicted at rate scale 0.85, and the bound held the walk at +15 % speed. The excess is
+// the start's offset in Φ (σ² − Φ(α) is conserved), so it adds to the energy at any rate: a
+// ratio would grow without bound where the path's prediction nears 0 (the bound's own rate).
 void Walker::measureLiftOffEnergy(const Vec5& q, const Vec5& qd) {
   const double predicted = apex_.fromStart(start_alpha_, ds_.rate_scale, 0.0);
   const bool sloped = std::abs(slope_) > options_.slope_deadband;
-  liftoff_energy_gain_ = sloped && predicted > 0.0
-                             ? std::max(1.0, apexRatio(q, qd) * apex_.gait() / predicted)
-                             : 1.0;
+  liftoff_energy_excess_ =
+      sloped ? std::max(0.0, apexRatio(q, qd) * apex_.gait() - predicted) : 0.0;
 }
 
 double Walker::rateScale(double error) {

@@ -156,6 +156,34 @@ TEST_CASE("Walker puts back a rear foot a touchdown on rising ground lifted, not
   CHECK(run(0.035, 1.01 * kRecontactTime, false).after == WalkerPhase::SingleSupport);
   // Level ground: the double support ends on the lost rear foot.
   CHECK(run(0.0, 0.05, true).phase == WalkerPhase::SingleSupport);
+
+  // Past α_fDS on the lift-off rate, `after` past the touchdown (level) or past the rear foot's
+  // return (uphill): the DS ends on the rate at once without a re-contact, but lasts T_DS after
+  // one (its outputs left the DS references while the rear foot was driven back).
+  const auto phase_on_rate = [&](double gamma, double after) {
+    WalkerOptions wide = o;
+    wide.lift_off_rate_tolerance = 0.5;
+    const Touchdown td = touchdown(gamma);
+    Walker w(g.model, g.evaluation, g.gait.options.parameterisation, wide);
+    w.torques(w.initialState());
+    w.torques(td.touchdown);
+    double t = td.touchdown.t;
+    if (gamma > 0.0) {
+      w.torques(td.lifted);
+      WalkerState back = td.lifted;
+      back.t = t = td.lifted.t + 0.01;
+      back.contact = {true, true};
+      w.torques(back);
+    }
+    REQUIRE(w.phase() == WalkerPhase::DoubleSupport);
+    Vec5 q, qd;
+    ssState(mo, mo.q_iSS(0) + 0.01 * (mo.alpha_fSS - mo.q_iSS(0)), mo.alphadot_iSS, q, qd);
+    w.torques(measured(g.model, q, qd, Stance::Right, 0.3, {true, true}, t + after));
+    return w.phase();
+  };
+  CHECK(phase_on_rate(0.0, 0.5 * mo.T_DS) == WalkerPhase::SingleSupport);
+  CHECK(phase_on_rate(0.035, 0.5 * mo.T_DS) == WalkerPhase::DoubleSupport);
+  CHECK(phase_on_rate(0.035, 1.01 * mo.T_DS) == WalkerPhase::SingleSupport);
 }
 
 TEST_CASE("Walker moves the next swing foot's end onto the slope measured at the touchdown",

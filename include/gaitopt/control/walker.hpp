@@ -96,8 +96,8 @@ constexpr double kRecontactTime = 0.15;
 // the swing foot lands short on ground sloping down. Measured in MuJoCo on 0.035 rad downhill
 // (100 steps, the seven shipped gaits): all walk with 0.16 to 0.18; 0.15 loses the 0.5 m/s
 // impact gait (stalls), 0.19 and 0.2 the 0.3 m/s gait (−5.2 % at 0.2), 0.1 the impact gaits
-// of Chessé and the default robot; on 0.02 and 0.01 rad 6 of 7 walk with 0.17, 5 of 7 without
-// shortening or lowering. Proportional to the slope (8 |γ|, at most 0.17) walked 4 of 7 on
+// of Chessé and the default robot; on 0.02 and 0.01 rad all 7 walk with 0.17 (the lift-off
+// energy counted additively in the rate bound), 5 of 7 without shortening or lowering. Proportional to the slope (8 |γ|, at most 0.17) walked 4 of 7 on
 // 0.02 rad: the gaits' speed regulation is sensitive to the step length changing with each
 // touchdown's slope measurement.
 constexpr double kDownhillShortening = 0.17;
@@ -153,8 +153,8 @@ class Walker {
   bool recontact_ = false, recontacted_ = false;
   double recontact_start_ = 0.0;
   Vec2 rear_target_ = Vec2::Zero();
-  double liftoff_energy_gain_ = 1.0;
-  void measureLiftOffEnergy(const Vec5& q, const Vec5& qd);  // at lift-off: liftoff_energy_gain_
+  double liftoff_energy_excess_ = 0.0;  // σ² [(kg m²/s)²]
+  void measureLiftOffEnergy(const Vec5& q, const Vec5& qd);  // at lift-off: liftoff_energy_excess_
 
   WalkingController law() const { return {gait_.motion, model_, options_}; }
   double phaseProgress(double alpha) const;  // s of the SS: 0 at α_iSS, 1 at α_fSS
