@@ -349,12 +349,10 @@ void Walker::regulateLean(double error, double scale, double t, double touchdown
 // The lean blended from lean_from_ to lean_to_ by a C¹ smoothstep over kLeanBlend T_SS from the
 // single support's start, in time: a step that stalls gets its lean all the same.
 PolyValue<double> Walker::leanAt(double t) const {
-  const double duration = kLeanBlend * gait_.motion.T_SS, h = lean_to_ - lean_from_;
-  const double u = (t - lean_start_) / duration;
-  if (u >= 1.0 || h == 0.0) return {lean_to_, 0.0, 0.0};
-  if (u <= 0.0) return {lean_from_, 0.0, 0.0};
-  return {lean_from_ + h * u * u * (3.0 - 2.0 * u), h * 6.0 * u * (1.0 - u) / duration,
-          h * (6.0 - 12.0 * u) / (duration * duration)};
+  const double h = lean_to_ - lean_from_;
+  const PolyValue<double> w = smoothstep(t, lean_start_, kLeanBlend * gait_.motion.T_SS);
+  if (w.value >= 1.0 || h == 0.0) return {lean_to_, 0.0, 0.0};
+  return {lean_from_ + h * w.value, h * w.first, h * w.second};
 }
 
 // The apex energy predicted from (q, q̇), leg 1 the stance (in DS the front) leg, over the

@@ -138,16 +138,6 @@ Vec4 outputControl(const WalkingController& s, const Vec5& q, const Vec5& qd,
   return response(p.v).gamma_star;
 }
 
-// The smoothstep 3s² − 2s³ of the SS phase s(α), clamped to [0, 1], with its α-derivatives:
-// the weight of ControllerOptions::swing_end_offset.
-PolyValue<double> swingEndBlend(const GaitMotion<double>& mo, double alpha) {
-  const double range = mo.alpha_fSS - mo.q_iSS(0), u = (alpha - mo.q_iSS(0)) / range;
-  if (u <= 0.0) return {0.0, 0.0, 0.0};
-  if (u >= 1.0) return {1.0, 0.0, 0.0};
-  return {u * u * (3.0 - 2.0 * u), 6.0 * u * (1.0 - u) / range,
-          (6.0 - 12.0 * u) / (range * range)};
-}
-
 // SS: the virtual constraints y = δ − δ_d(α), B = [−δ_d'(α) | I], c = δ_d'' α̇². With touchdown
 // by foot height, α may pass α_fSS before the foot lands: the polynomials δ_d are then
 // extrapolated for an impact landing (the thesis freezes them at α_fSS, §4.3.1.3, which steps
@@ -155,7 +145,9 @@ PolyValue<double> swingEndBlend(const GaitMotion<double>& mo, double alpha) {
 // landing (ControllerOptions::hold_references_past_fss: only the freeze brings its foot down).
 Vec4 ssControl(const WalkingController& s, const Vec5& q, const Vec5& qd, ControlOutput& e) {
   PinnedOutputs y;
-  const PolyValue<double> blend = swingEndBlend(s.motion, q(0));
+  // The weight of ControllerOptions::swing_end_offset: the smoothstep of the SS phase s(α).
+  const GaitMotion<double>& mo = s.motion;
+  const PolyValue<double> blend = smoothstep(q(0), mo.q_iSS(0), mo.alpha_fSS - mo.q_iSS(0));
   for (int j = 0; j < 4; ++j) {
     PolyValue<double> v = plannedSsReference(s, j, q(0));
     const double end = s.options.swing_end_offset(j);

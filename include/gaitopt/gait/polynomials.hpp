@@ -11,6 +11,17 @@ template <class S> struct PolyValue {
   S value, first, second;  // p, dp/dx, d²p/dx²
 };
 
+// The C¹ smoothstep 3u² − 2u³ of u = (x − x0) / length, 0 before x0 and 1 past x0 + length
+// (a negative length: x decreasing), with its x-derivatives: a blend that starts and ends with
+// zero slope.
+inline PolyValue<double> smoothstep(double x, double x0, double length) {
+  const double u = (x - x0) / length;
+  if (u <= 0.0) return {0.0, 0.0, 0.0};
+  if (u >= 1.0) return {1.0, 0.0, 0.0};
+  return {u * u * (3.0 - 2.0 * u), 6.0 * u * (1.0 - u) / length,
+          (6.0 - 12.0 * u) / (length * length)};
+}
+
 // p(x) = Σ_k c_k (x − x0)^k.
 template <class S> struct LocalPolynomial {
   S x0;

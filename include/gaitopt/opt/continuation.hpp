@@ -12,10 +12,9 @@
 // ends its attempts, the speed shown infeasible with its blocking rows; otherwise it is retried
 // once from the nearest optimum beyond it (further from the chain's start), when there is
 // one, then once from defaultInitialGuess, and the elastic problem runs again from the attempt
-// then kept. With jobs > 1 the list
-// is cut into `jobs` contiguous chunks, each an independent chain (started at its speed
-// closest to the free-speed optimum) on its own thread; each chunk's results are exactly those
-// of a one-chain run on that chunk alone (e.g. a shard).
+// then kept. With jobs > 1 the list is cut into `jobs` contiguous chunks, each an independent
+// chain (started at its speed closest to the free-speed optimum) on its own thread; each
+// chunk's results are exactly those of a one-chain run on that chunk alone (e.g. a shard).
 #include <functional>
 #include <optional>
 #include <ostream>
