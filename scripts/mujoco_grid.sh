@@ -61,11 +61,15 @@ cases_given=0
 full=1
 while [ "$#" -gt 0 ]; do
   case "$1" in
-    --steps) steps="${2:?}"; full=0; shift 2 ;;
-    --cases) IFS=, read -r -a cases <<<"${2:?}"; full=0; cases_given=1; shift 2 ;;
-    --slopes) IFS=, read -r -a slopes <<<"${2:?}"; shift 2 ;;
-    --jobs) jobs="${2:?}"; shift 2 ;;
-    --out) out="${2:?}"; shift 2 ;;
+    --steps|--cases|--slopes|--jobs|--out)
+      [ -n "${2-}" ] || { echo "mujoco_grid: $1 needs a value" >&2; exit 2; } ;;
+  esac
+  case "$1" in
+    --steps) steps="$2"; full=0; shift 2 ;;
+    --cases) IFS=, read -r -a cases <<<"$2"; full=0; cases_given=1; shift 2 ;;
+    --slopes) IFS=, read -r -a slopes <<<"$2"; shift 2 ;;
+    --jobs) jobs="$2"; shift 2 ;;
+    --out) out="$2"; shift 2 ;;
     -h|--help) usage ;;
     --blocks) printf '%s\n' "$doc" "$doc between_slopes"; exit 0 ;;  # its generated blocks
     -*) echo "mujoco_grid: unknown option $1" >&2; usage ;;
