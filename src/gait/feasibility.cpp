@@ -9,17 +9,21 @@
 
 namespace gaitopt {
 
-BetweenNodesCheck checkBetweenNodes(const GaitEvaluator& ev, const GaitParameters& p) {
+GaitEvaluator betweenNodesEvaluator(const GaitEvaluator& ev) {
   GaitOptions o = ev.options();
   o.ss_nodes *= kBetweenNodesRefinement;
   o.ds_nodes *= kBetweenNodesRefinement;
   o.criteria_refinement = 1;  // constraints only: W and C_E are not read
-  const GaitEvaluator fine(ev.model().robot, o, ev.model().options);
+  return GaitEvaluator(ev.model().robot, o, ev.model().options);
+}
+
+BetweenNodesCheck checkBetweenNodes(const GaitEvaluator& ev, const GaitParameters& p) {
+  const GaitEvaluator fine = betweenNodesEvaluator(ev);
   const GaitEvaluation<double> e = fine.evaluate(p);
   const ConstraintLayout& layout = fine.layout();
   BetweenNodesCheck r;
-  r.ss_nodes = o.ss_nodes;
-  r.ds_nodes = o.ds_nodes;
+  r.ss_nodes = fine.options().ss_nodes;
+  r.ds_nodes = fine.options().ds_nodes;
   r.computed = e.motion_computed;
   r.worst_scaled = -std::numeric_limits<double>::infinity();
   r.group_worst_scaled.assign(layout.groups().size(), r.worst_scaled);

@@ -2,10 +2,12 @@
 // independent reason (a joint-limit margin wider than half a knee's range: no knee angle
 // meets both of its rows) is certified with the knee rows blocking and s* at least the margin's
 // excess; a feasible optimum gives no certificate; at every first-order point with s* > 0 the
-// blocking rows are at s*; row names.
+// blocking rows are at s*; a step whose rows hold but not the verdict between the nodes gets the
+// rows of the verdict's own finer grid (nested in the optimiser's); row names.
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "gaitopt/gait/feasibility.hpp"
 #include "gaitopt/io/gait_file.hpp"
 #include "gaitopt/opt/gait_problem.hpp"
 #include "gaitopt/opt/infeasibility_certificate.hpp"
@@ -101,6 +103,71 @@ TEST_CASE("Elastic problem: a first-order point with s* > 0 has its blocking row
     CHECK(sum <= 1.0 + 1e-6);
   }
   CHECK(certified >= 1);  // the knee margin
+}
+
+// The step the 10-speed library keeps at 0.95 m/s on configs/default.yaml: its rows hold, the
+// 10× finer check does not (a sign change of the Coulomb torque between two SS nodes).
+GaitFile unmetBetweenNodes() {
+  return loadGaitFile(sourcePath("tests/data/gait_optima/default_0.95_unmet_between.yaml"));
+}
+
+TEST_CASE("Elastic problem: rows met, the verdict broken between the nodes: a point meeting it",
+          "[certificate]") {
+  const GaitFile g = unmetBetweenNodes();
+  const GaitEvaluator ev(g.robot, g.options, g.model_options);
+  const double v = 0.95;
+  // The start: every level-5 row within the tolerance at the nodes, the SS torque envelope
+  // 1e-2 scaled (1.4 N m) and more over between them.
+  const GaitEvaluation<double> e = ev.evaluate(g.parameters);
+  for (int k = 0; k < ev.layout().size(); ++k)
+    if (ev.layout().levelOf(k) == 5 && e.state[k] != ConstraintState::NotComputed)
+      REQUIRE(e.g[k] / constraintScale(ev.layout(), ev.model(), k) <= kFeasibilityTolerance);
+  const FeasibilityVerdict start = feasibilityVerdict(ev, g.parameters, e, v);
+  REQUIRE_FALSE(start.feasible);
+  CHECK(start.between_nodes.worst_group == kTorqueSS);
+  CHECK(start.between_nodes.worst_scaled > 1e-2);
+
+  // The elastic problem ends on a point meeting the one verdict (nodes, the finer grid, the
+  // speed): no certificate, and a start the optimiser can be restarted from.
+  const InfeasibilityCertificate c = minimiseViolation(ev, g.parameters, v);
+  INFO("s* " << c.min_violation << ", converged " << c.converged);
+  const FeasibilityVerdict end = feasibilityVerdict(ev, c.x, ev.evaluate(c.x), v);
+  CHECK(end.feasible);
+  CHECK(end.between_nodes.worst_scaled <= kFeasibilityTolerance);
+  CHECK(c.feasible);
+  CHECK(c.min_violation <= kFeasibilityTolerance);
+  CHECK_FALSE(c.infeasible());
+  CHECK(c.blocking.empty());
+}
+
+TEST_CASE("The verdict's finer grid holds the optimiser's nodes: node 10 k is node k",
+          "[certificate]") {
+  // Chebyshev–Lobatto nodes cos(π k / N) and cos(π 10 k / 10 N) coincide: the same step gives
+  // the same row values there, so a row of the finer grid lies in one interval of the
+  // optimiser's grid (the certificate names it so).
+  const GaitFile g = unmetBetweenNodes();
+  const GaitEvaluator ev(g.robot, g.options, g.model_options);
+  const GaitEvaluator fine = betweenNodesEvaluator(ev);
+  CHECK(fine.options().ss_nodes == kBetweenNodesRefinement * ev.options().ss_nodes);
+  CHECK(fine.options().ds_nodes == kBetweenNodesRefinement * ev.options().ds_nodes);
+  const GaitEvaluation<double> coarse = ev.evaluate(g.parameters), refined = fine.evaluate(g.parameters);
+  int compared = 0;
+  for (int id : {kTorqueSS, kJointLimitsSS, kClearance, kTorqueDS, kFrictionConeDS,
+                 kNormalForceDS}) {
+    const ConstraintGroup& c = ev.layout()[id];
+    const ConstraintGroup& f = fine.layout()[id];
+    REQUIRE(c.per_point == f.per_point);
+    REQUIRE(c.first_point == f.first_point);
+    for (int k = c.offset; k < c.offset + c.count; ++k) {
+      const int node = (k - c.offset) / c.per_point + c.first_point;
+      const int sub = (k - c.offset) % c.per_point;
+      const int j = f.offset + (kBetweenNodesRefinement * node - f.first_point) * f.per_point + sub;
+      INFO(constraintRowName(ev.layout(), k));
+      CHECK(refined.g[j] == Approx(coarse.g[k]).margin(1e-9 * constraintGroupScale(id, ev.model())));
+      ++compared;
+    }
+  }
+  CHECK(compared > 500);
 }
 
 TEST_CASE("constraintRowName: group, joint or foot, side, node", "[certificate]") {

@@ -26,6 +26,9 @@ struct BetweenNodesCheck {
 };
 
 BetweenNodesCheck checkBetweenNodes(const GaitEvaluator& evaluator, const GaitParameters& p);
+// The evaluator of that check: the same step with kBetweenNodesRefinement × the SS and DS
+// nodes (Chebyshev–Lobatto grids, so its node 10 k is node k of `evaluator`), constraints only.
+GaitEvaluator betweenNodesEvaluator(const GaitEvaluator& evaluator);
 
 // A step evaluated without dry friction (GaitOptions::dry_friction false) bounds a Γ* without
 // the robot's Coulomb friction, which the exported feedforward adds: its torque envelope rows

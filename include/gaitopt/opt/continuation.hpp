@@ -8,11 +8,12 @@
 // (b) the listed speed closest to its speed, started from it, (c) outward in both directions,
 // each speed started from the last optimal speed on its side (the free-speed optimum while there
 // is none), (d) afterwards each speed that is not optimal gets the elastic problem
-// (opt/infeasibility_certificate.hpp) from its least violating attempt: a certificate (s* > 0)
-// ends its attempts, the speed shown infeasible with its blocking rows; otherwise it is retried
-// once from the nearest optimum beyond it (further from the chain's start), when there is
-// one, then once from defaultInitialGuess, and the elastic problem runs again from the attempt
-// then kept. With jobs > 1 the list is cut into `jobs` contiguous chunks, each an independent
+// (opt/infeasibility_certificate.hpp) from its kept attempt: a certificate (s* > 0) ends its
+// attempts, the speed shown infeasible with its blocking rows; a point of the elastic problem
+// that meets the feasibility verdict is the start of one more attempt; while there is no
+// optimum the speed is retried once from the nearest optimum beyond it (further from the
+// chain's start), when there is one, then once from defaultInitialGuess, and the elastic
+// problem runs again from the attempt then kept. With jobs > 1 the list is cut into `jobs` contiguous chunks, each an independent
 // chain (started at its speed closest to the free-speed optimum) on its own thread; each
 // chunk's results are exactly those of a one-chain run on that chunk alone (e.g. a shard).
 #include <functional>
@@ -49,11 +50,14 @@ std::vector<double> sortedSpeeds(const std::vector<double>& speeds);
 
 struct SweepPoint {
   double speed = 0.0;         // the requested speed [m/s]
-  OptimizationResult result;  // the attempt kept: the first optimal one, else the least violating
+  OptimizationResult result;  // the attempt kept: the first optimal one, else the first meeting
+                              // the verdict, else the one unmet at the highest level, the least
+                              // violating there
   bool warm_started = false;  // that attempt started from another listed speed's optimum
   double from_speed = 0.0;    // speed of the optimum it started from: a listed speed, the free
                               // speed (chain start), NaN when it started from defaultInitialGuess
-  int attempts = 0;           // optimisations run for this speed (1–3)
+                              // or from the elastic problem's step
+  int attempts = 0;           // optimisations run for this speed (1–4)
   int total_iterations = 0;   // over all attempts and the elastic problem
   double total_wall_time_s = 0.0;
   // The last elastic problem, when the speed's attempts ended without an optimum (from the

@@ -4,15 +4,17 @@
 //   too),  levels 0–4 held,  speed(p) = v,
 // started from the best point an optimisation reached, solved at the nodes first (smooth rows;
 // a step that cannot meet them at the nodes cannot meet them between), then, when they can be
-// met there, with the rows between the nodes (opt/gait_problem.hpp). Its optimum s* is the
+// met there, with the rows between the nodes (opt/gait_problem.hpp), and, when those can be met
+// but the point still breaks the verdict's 10× finer check, with the level-5 rows of that finer
+// grid (gait/feasibility.hpp: nested in the nodes, so the verdict's own rows). Its optimum s* is the
 // smallest worst scaled violation reachable from there; s* > 0 at a first-order point shows
 // the speed locally infeasible (the problem is not convex: another region of the parameters
 // is not excluded). Since ∂/∂s of the Lagrangian gives Σ λ_k = 1, each row's multiplier λ_k is
 // its share of the blockage: relaxing that row's bound by ε (scaled) lowers s* by λ_k ε. The
 // multipliers are those of the rows active at the point, by non-negative least squares (SLSQP
 // returns none). s is bounded below by 0: s* = 0 means every row can be met (no evidence; the
-// speed's attempts failed for another reason, e.g. the 10× finer check between the nodes,
-// gait/feasibility.hpp, or the solver).
+// speed's attempts failed for another reason, the solver's; `feasible` says whether the point
+// reached meets the whole verdict, a start for another attempt).
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,7 +25,8 @@ namespace gaitopt {
 
 struct BlockingConstraint {
   int entry = -1;           // layout entry (gait/constraints.hpp)
-  std::string name;         // constraintRowName, " (between nodes)" for such a row
+  std::string name;         // constraintRowName, " (between nodes)" for such a row (a row of
+                            // the finer grid: that of the interval holding it)
   double multiplier = 0.0;  // λ_k of the elastic problem (the multipliers sum to 1)
   double value = 0.0;       // g_k at the elastic optimum, in `unit` (> 0: unmet)
   std::string unit;
