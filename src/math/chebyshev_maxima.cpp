@@ -53,15 +53,21 @@ InterpolantMaximum bestOf(const ChebyshevGrid& grid, const Eigen::VectorXd& valu
 }  // namespace
 
 Eigen::VectorXd lagrangeBasis(const ChebyshevGrid& grid, double s) {
+  Eigen::VectorXd l;
+  lagrangeBasis(grid, s, l);
+  return l;
+}
+
+void lagrangeBasis(const ChebyshevGrid& grid, double s, Eigen::VectorXd& l) {
   const Eigen::VectorXd& x = grid.nodes();
-  Eigen::VectorXd l = Eigen::VectorXd::Zero(grid.size());
+  l.setZero(grid.size());
   const int j = grid.nearestNode(s);
   if (s == x[j]) {
     l[j] = 1.0;
-    return l;
+    return;
   }
   for (int k = 0; k < grid.size(); ++k) l[k] = grid.barycentricWeights()[k] / (s - x[k]);
-  return l / l.sum();
+  l /= l.sum();
 }
 
 InterpolantMaximum maximumOn(const ChebyshevGrid& grid, const Eigen::VectorXd& values,

@@ -6,7 +6,7 @@
 namespace gaitopt {
 
 const GaitEvaluation<double>& GaitEvaluationCache::values(const GaitParameters& p) {
-  if (gradient_at_ && *gradient_at_ == p) return gradient_.value;
+  if (holdsGradient(p)) return gradient_.value;
   if (!value_at_ || *value_at_ != p) {
     values_ = evaluator_.evaluate(p);
     value_at_ = p;

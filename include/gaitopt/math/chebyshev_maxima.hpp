@@ -20,6 +20,8 @@ struct InterpolantMaximum {
 
 // Lagrange basis at s: G(s) = l(s)·values for any nodal values (a unit vector at a node).
 Eigen::VectorXd lagrangeBasis(const ChebyshevGrid& grid, double s);
+// The same into `l` (resized), for callers that reuse one vector over many points.
+void lagrangeBasis(const ChebyshevGrid& grid, double s, Eigen::VectorXd& l);
 
 // Maximum of the interpolant of `values` over any [lo, hi] ⊂ [−1, 1] (slope: its nodal
 // derivative, grid.differentiation() · values), found as IntervalMaxima finds it between two

@@ -20,6 +20,8 @@ class GaitEvaluationCache {
   const GaitEvaluator& evaluator() const { return evaluator_; }
   const GaitEvaluation<double>& values(const GaitParameters& p);
   const GaitGradient& gradient(const GaitParameters& p);
+  // Whether values(p) answers with the gradient pass's values (kept at p), not a plain pass.
+  bool holdsGradient(const GaitParameters& p) const { return gradient_at_ && *gradient_at_ == p; }
   // Whether gradients carry the DS piece samples' derivatives (set by the constraint set that
   // needs them, opt/gait_problem.cpp); off by default, they are the costly part of a gradient.
   void setDsPieceGradients(bool on);
