@@ -3,10 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 #include <stdexcept>
-#include <utility>
 #include <vector>
+
+#include "gaitopt/math/degree_cache.hpp"
 
 namespace gaitopt {
 
@@ -33,18 +33,7 @@ ChebyshevGrid::ChebyshevGrid(int n) : n_(n), t_(sharedTables(n)) {}
 
 std::shared_ptr<const ChebyshevGrid::Tables> ChebyshevGrid::sharedTables(int n) {
   if (n < 2) throw std::invalid_argument("ChebyshevGrid: need n >= 2");
-  // Most recently used first; a few degrees cover an optimisation (SS, DS and their 10×).
-  constexpr std::size_t kKept = 8;
-  static std::mutex mutex;
-  static std::vector<std::pair<int, std::shared_ptr<const Tables>>> kept;
-  const std::lock_guard<std::mutex> lock(mutex);
-  auto it = std::find_if(kept.begin(), kept.end(), [n](const auto& e) { return e.first == n; });
-  std::pair<int, std::shared_ptr<const Tables>> entry =
-      it != kept.end() ? *it : std::make_pair(n, std::make_shared<const Tables>(computeTables(n)));
-  if (it != kept.end()) kept.erase(it);
-  kept.insert(kept.begin(), entry);
-  if (kept.size() > kKept) kept.pop_back();
-  return entry.second;
+  return sharedByDegree<Tables>(n, computeTables);
 }
 
 ChebyshevGrid::Tables ChebyshevGrid::computeTables(int n) {
