@@ -26,6 +26,14 @@ const GaitGradient& GaitEvaluationCache::gradient(const GaitParameters& p) {
   return gradient_;
 }
 
+const BetweenNodesCheck& GaitEvaluationCache::betweenNodes(const GaitParameters& p) {
+  if (!between_nodes_at_ || *between_nodes_at_ != p) {
+    between_nodes_ = checkBetweenNodes(evaluator_, p);
+    between_nodes_at_ = p;
+  }
+  return between_nodes_;
+}
+
 void GaitEvaluationCache::setDsPieceGradients(bool on) {
   if (on && !ds_piece_gradients_) gradient_at_.reset();  // the cached one lacks them
   ds_piece_gradients_ = on;
