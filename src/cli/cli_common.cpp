@@ -12,7 +12,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <system_error>
-#include <unistd.h>
 
 #include "gaitopt/io/summary_file.hpp"
 #include "gaitopt/opt/gait_problem.hpp"
@@ -135,51 +134,6 @@ std::string elapsedAndRemaining(double elapsed_s, int done, int total) {
   if (done > 0 && done < total)
     s += ", remaining ~" + shortNumber(elapsed_s / done * (total - done), "%.1f") + " s";
   return s;
-}
-
-OptimizeProgress::OptimizeProgress(const GaitEvaluator& evaluator, Criterion c, ProgressMode mode,
-                                   std::ostream& out)
-    : evaluator_(evaluator),
-      criterion_(c),
-      style_(mode == ProgressMode::Lines ? Style::Every
-             : &out == &std::cout && isatty(STDOUT_FILENO) ? Style::InPlace
-                                                            : Style::StageEnds),
-      out_(out) {}
-
-void OptimizeProgress::report(const std::string& stage, const GaitParameters& p, int iteration) {
-  const double elapsed =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  const std::string line = "[" + stage + "] iter " + std::to_string(iteration) + "  " +
-                           progressText(evaluator_, evaluator_.evaluate(p), criterion_) +
-                           "  elapsed " + shortNumber(elapsed, "%.1f") + " s";
-  if (style_ == Style::Every) {
-    out_ << line << "\n" << std::flush;
-    return;
-  }
-  if (style_ == Style::StageEnds) {
-    if (stage != stage_ && !pending_.empty()) out_ << pending_ << "\n" << std::flush;
-    pending_ = line;
-    stage_ = stage;
-    return;
-  }
-  if (open_line_ && stage != stage_) out_ << "\n";  // the last line of each stage stays
-  out_ << "\r" << line << "\033[K" << std::flush;
-  stage_ = stage;
-  open_line_ = true;
-}
-
-void OptimizeProgress::endLine() {
-  if (open_line_) out_ << "\n" << std::flush;
-  if (!pending_.empty()) out_ << pending_ << "\n" << std::flush;
-  open_line_ = false;
-  pending_.clear();
-  stage_.clear();
-}
-
-std::function<void(const std::string&, const GaitParameters&, int)> OptimizeProgress::hook() {
-  return [this](const std::string& stage, const GaitParameters& p, int it) {
-    report(stage, p, it);
-  };
 }
 
 void addDsControlOption(CLI::App* cmd, std::string& target) {

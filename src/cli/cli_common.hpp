@@ -12,6 +12,7 @@
 #include "gaitopt/opt/optimizer.hpp"
 #include "gaitopt/sim/closed_loop.hpp"
 #include "gaitopt/opt/gait_problem.hpp"
+#include "optimize_progress.hpp"  // OptimizeProgress, for the optimising commands
 
 namespace gaitopt::cli {
 
@@ -66,33 +67,5 @@ void addDsControlOption(CLI::App* cmd, std::string& target);
 DsAlphaControl dsAlphaControlOf(const std::string& name);
 
 std::string elapsedAndRemaining(double elapsed_s, int done, int total);
-
-// How progress lines are shown: on a terminal one line updated in place per stage (`auto`),
-// else (or `lines`) one line per report.
-enum class ProgressMode { Auto, Lines };
-
-// Progress of optimisations for SolverSettings::on_iteration: evaluates the solver's point
-// and prints "[stage] iter k  <progressText>  elapsed t s". Auto: on a terminal one line per
-// stage updated in place, otherwise (a log, a pipe) the last line of each stage only; Lines:
-// every line.
-class OptimizeProgress {
- public:
-  OptimizeProgress(const GaitEvaluator& evaluator, Criterion c, ProgressMode mode,
-                   std::ostream& out);
-  void report(const std::string& stage, const GaitParameters& p, int iteration);
-  void endLine();  // closes an updating line before other output
-  std::function<void(const std::string&, const GaitParameters&, int)> hook();
-
- private:
-  enum class Style { InPlace, StageEnds, Every };
-  const GaitEvaluator& evaluator_;
-  Criterion criterion_;
-  Style style_;
-  std::ostream& out_;
-  std::string stage_;
-  std::string pending_;  // StageEnds: the stage's last line, printed when the stage ends
-  bool open_line_ = false;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
 
 }  // namespace gaitopt::cli

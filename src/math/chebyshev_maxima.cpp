@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gaitopt/math/degree_cache.hpp"
+
 namespace gaitopt {
 namespace {
 
@@ -53,15 +55,21 @@ InterpolantMaximum bestOf(const ChebyshevGrid& grid, const Eigen::VectorXd& valu
 }  // namespace
 
 Eigen::VectorXd lagrangeBasis(const ChebyshevGrid& grid, double s) {
+  Eigen::VectorXd l;
+  lagrangeBasis(grid, s, l);
+  return l;
+}
+
+void lagrangeBasis(const ChebyshevGrid& grid, double s, Eigen::VectorXd& l) {
   const Eigen::VectorXd& x = grid.nodes();
-  Eigen::VectorXd l = Eigen::VectorXd::Zero(grid.size());
+  l.setZero(grid.size());
   const int j = grid.nearestNode(s);
   if (s == x[j]) {
     l[j] = 1.0;
-    return l;
+    return;
   }
   for (int k = 0; k < grid.size(); ++k) l[k] = grid.barycentricWeights()[k] / (s - x[k]);
-  return l / l.sum();
+  l /= l.sum();
 }
 
 InterpolantMaximum maximumOn(const ChebyshevGrid& grid, const Eigen::VectorXd& values,
@@ -80,28 +88,35 @@ InterpolantMaximum maximumOn(const ChebyshevGrid& grid, const Eigen::VectorXd& v
   return bestOf(grid, values, slope, e, sample_s, sample_value);
 }
 
-IntervalMaxima::IntervalMaxima(const ChebyshevGrid& grid) : grid_(grid) {
+IntervalMaxima::IntervalMaxima(const ChebyshevGrid& grid)
+    : grid_(grid), samples_(sharedByDegree<Samples>(grid.degree(), samplesOf)) {}
+
+IntervalMaxima::Samples IntervalMaxima::samplesOf(int degree) {
+  const ChebyshevGrid grid(degree);
   const int per = kSamples - 1;
-  sample_s_.resize(grid.degree() * per);
-  sample_.resize(sample_s_.size(), grid.size());
+  Samples out;
+  out.s.resize(grid.degree() * per);
+  out.matrix.resize(out.s.size(), grid.size());
   for (int k = 0; k < grid.degree(); ++k)
     for (int i = 0; i < per; ++i) {
       const double lo = grid.nodes()[k + 1], hi = grid.nodes()[k];
       const int row = k * per + i;
-      sample_s_[row] = lo + (hi - lo) * (i + 1) / kSamples;
-      sample_.row(row) = lagrangeBasis(grid, sample_s_[row]).transpose();
+      out.s[row] = lo + (hi - lo) * (i + 1) / kSamples;
+      out.matrix.row(row) = lagrangeBasis(grid, out.s[row]).transpose();
     }
+  return out;
 }
 
 std::vector<InterpolantMaximum> IntervalMaxima::operator()(const Eigen::VectorXd& values) const {
   const Eigen::VectorXd& x = grid_.nodes();
-  const Eigen::VectorXd samples = sample_ * values;
+  const Eigen::VectorXd samples = samples_->matrix * values;
   const Eigen::VectorXd slope = grid_.differentiation() * values;  // nodal G'
   std::vector<InterpolantMaximum> out;
+  out.reserve(grid_.degree());
   const int per = kSamples - 1;
   for (int k = 0; k < grid_.degree(); ++k) {
     const IntervalEnds e{x[k + 1], x[k], values[k + 1], values[k], slope[k + 1], slope[k]};
-    out.push_back(bestOf(grid_, values, slope, e, &sample_s_[k * per], &samples[k * per]));
+    out.push_back(bestOf(grid_, values, slope, e, &samples_->s[k * per], &samples[k * per]));
   }
   return out;
 }

@@ -6,7 +6,7 @@
 namespace gaitopt {
 
 const GaitEvaluation<double>& GaitEvaluationCache::values(const GaitParameters& p) {
-  if (gradient_at_ && *gradient_at_ == p) return gradient_.value;
+  if (holdsGradient(p)) return gradient_.value;
   if (!value_at_ || *value_at_ != p) {
     values_ = evaluator_.evaluate(p);
     value_at_ = p;
@@ -24,6 +24,14 @@ const GaitGradient& GaitEvaluationCache::gradient(const GaitParameters& p) {
     ++gradient_count_;
   }
   return gradient_;
+}
+
+const BetweenNodesCheck& GaitEvaluationCache::betweenNodes(const GaitParameters& p) {
+  if (!between_nodes_at_ || *between_nodes_at_ != p) {
+    between_nodes_ = checkBetweenNodes(evaluator_, p);
+    between_nodes_at_ = p;
+  }
+  return between_nodes_;
 }
 
 void GaitEvaluationCache::setDsPieceGradients(bool on) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "gaitopt/gait/ds_interval_maxima.hpp"
 #include "gaitopt/math/chebyshev_maxima.hpp"
@@ -14,6 +15,17 @@ constexpr double kInf = 1e20;
 GaitParameters toParameters(const VectorX& x) { return GaitParameters(x); }
 
 bool motionAvailable(const GaitEvaluation<double>& e) { return e.motion_computed; }
+
+// Which evaluation a result comes from: the point, and whether the cache answered with its
+// gradient pass's values (GaitEvaluationCache::values). The values are a deterministic function
+// of both, so what was computed under one key is the same numbers when asked again.
+struct EvaluationKey {
+  GaitParameters x;
+  bool gradient = false;
+  bool operator==(const EvaluationKey& o) const {
+    return gradient == o.gradient && x.size() == o.x.size() && x == o.x;
+  }
+};
 
 class CriterionCost : public CostTerm {
  public:
@@ -108,8 +120,11 @@ class BetweenNodeRows {
       rows_.push_back(r);
     }
   }
-  // The interval maxima of every row's sequence at an evaluation (false: one is not computed).
-  bool update(const GaitEvaluation<double>& e) {
+  // The interval maxima of every row's sequence at an evaluation (false: one is not computed);
+  // kept while the evaluation's key stays the same.
+  bool update(const GaitEvaluation<double>& e, const EvaluationKey& at) {
+    if (at_ && *at_ == at) return true;
+    at_.reset();
     maxima_.clear();
     if (uses_pieces_ && !ds_pieces_.update(e)) return false;
     for (const BetweenNodeRow& r : rows_) {
@@ -122,6 +137,7 @@ class BetweenNodeRows {
       const bool ss = ev_.layout()[r.group].phase == ConstraintPhase::SingleSupport;
       maxima_[key(r)] = (ss ? ss_ : ds_)(values);
     }
+    at_ = at;
     return true;
   }
   int size() const { return static_cast<int>(rows_.size()); }
@@ -132,29 +148,44 @@ class BetweenNodeRows {
     return piecewise(r.group) ? ds_pieces_.maximum(r.group, r.sub, r.interval).value
                               : maximum(row).value;
   }
-  // Envelope theorem: Σ_m l_m(s*) ∇g_m; dg_t = gr.dg transposed, so that each ∇g_m is a
-  // contiguous column (a Jacobian sums ~30 of them for each of ~1000 rows).
-  VectorX gradient(int row, const GaitGradient& gr, const MatrixX& dg_t) const {
+  // Envelope theorem: Σ_m l_m(s*) ∇g_m into `out`; dg_t = gr.dg transposed, so that each ∇g_m
+  // is a contiguous column (a Jacobian sums ~30 of them for each of ~1000 rows).
+  void gradient(int row, const GaitGradient& gr, const MatrixX& dg_t,
+                Eigen::Ref<VectorX> out) {
     const BetweenNodeRow& r = rows_[row];
-    if (piecewise(r.group)) return ds_pieces_.gradient(r.group, r.sub, r.interval, gr);
-    const Eigen::VectorXd l = lagrangeBasis(grid(ev_.layout()[r.group]), maximum(row).s);
-    VectorX out = VectorX::Zero(dg_t.rows());
-    for (const auto& [node, k] : sequences_.at(key(r))) out += l[node] * dg_t.col(k);
-    return out;
+    if (piecewise(r.group)) {
+      out = ds_pieces_.gradient(r.group, r.sub, r.interval, gr);
+      return;
+    }
+    lagrangeBasis(grid(ev_.layout()[r.group]), maximum(row).s, basis_);
+    const Sequence& q = sequences_.at(key(r));
+    if (out.size() == kNumGaitParameters)
+      sumColumns<Eigen::Matrix<double, kNumGaitParameters, 1>>(q, dg_t, out);
+    else
+      sumColumns<VectorX>(q, dg_t, out);
   }
 
  private:
   const ChebyshevGrid& grid(const ConstraintGroup& g) const {
     return g.phase == ConstraintPhase::SingleSupport ? ev_.ssGrid() : ev_.dsGrid();
   }
+  using Sequence = std::vector<std::pair<int, int>>;  // (node, layout entry)
   static int key(const BetweenNodeRow& r) { return r.group * 64 + r.sub; }
+  // Σ_m l_m ∇g_m in an `Acc`: of fixed size for the thesis' 17 parameters, which keeps the sum
+  // in registers over the ~30 columns (the same additions, in the same order).
+  template <class Acc>
+  void sumColumns(const Sequence& q, const MatrixX& dg_t, Eigen::Ref<VectorX> out) const {
+    Acc sum = Acc::Zero(out.size());
+    for (const auto& [node, k] : q) sum += basis_[node] * dg_t.col(k);
+    out = sum;
+  }
   const InterpolantMaximum& maximum(int row) const {
     return maxima_.at(key(rows_[row]))[rows_[row].interval];
   }
   // (node, layout entry) of every entry of a row's sequence.
-  std::vector<std::pair<int, int>> sequenceOf(const BetweenNodeRow& r) const {
+  Sequence sequenceOf(const BetweenNodeRow& r) const {
     const ConstraintGroup& g = ev_.layout()[r.group];
-    std::vector<std::pair<int, int>> out;
+    Sequence out;
     for (int i = 0; i < g.count / g.per_point; ++i)
       out.emplace_back(i + g.first_point, g.offset + i * g.per_point + r.sub);
     return out;
@@ -166,7 +197,9 @@ class BetweenNodeRows {
   bool uses_pieces_ = false;
   std::vector<BetweenNodeRow> rows_;
   std::map<int, std::vector<InterpolantMaximum>> maxima_;
-  std::map<int, std::vector<std::pair<int, int>>> sequences_;  // by key, the smooth groups'
+  std::map<int, Sequence> sequences_;  // by key, the smooth groups'
+  std::optional<EvaluationKey> at_;  // of maxima_
+  Eigen::VectorXd basis_;            // the Lagrange basis of the row at hand
 };
 
 class HierarchyConstraints : public ConstraintSet {
@@ -192,37 +225,72 @@ class HierarchyConstraints : public ConstraintSet {
       upper(i) = layout.levelOf(rows_[i]) < 5 ? -interior_ : -level5_interior_;
   }
   bool values(const VectorX& x, Eigen::Ref<VectorX> g) override {
-    const GaitEvaluation<double>& e = cache_.values(toParameters(x));
-    if (!between_.update(e)) return false;
-    for (int i = 0; i < size(); ++i) {
-      if (e.state[rows_[i]] == ConstraintState::NotComputed) return false;
-      g(i) = (between(i) ? between_.value(i) : e.g[rows_[i]]) / scales_[i];
+    const EvaluationKey at{toParameters(x), cache_.holdsGradient(toParameters(x))};
+    if (!(values_.at && *values_.at == at)) {
+      values_.at = at;
+      values_.ok = computeValues(cache_.values(at.x), at);
     }
-    return true;
+    g = values_.rows;
+    return values_.ok;
   }
   bool jacobian(const VectorX& x, Eigen::Ref<MatrixX> jac) override {
-    const GaitGradient& gr = cache_.gradient(toParameters(x));
-    if (!between_.update(gr.value)) return false;
-    const MatrixX dg_t = between_.size() > 0 ? MatrixX(gr.dg.transpose()) : MatrixX();
-    for (int i = 0; i < size(); ++i) {
-      if (gr.value.state[rows_[i]] == ConstraintState::NotComputed) return false;
-      if (between(i))
-        jac.row(i) = between_.gradient(i, gr, dg_t).transpose() / scales_[i];
-      else
-        jac.row(i) = gr.dg.row(rows_[i]) / scales_[i];
+    const EvaluationKey at{toParameters(x), true};
+    if (!(jacobian_.at && *jacobian_.at == at)) {
+      jacobian_.at = at;
+      jacobian_.ok = computeJacobian(cache_.gradient(at.x), at);
     }
-    return true;
+    jac = jacobian_.rows.transpose();
+    return jacobian_.ok;
   }
   int layoutEntry(int row) const { return rows_[row]; }
 
  private:
   bool between(int row) const { return between_.size() > 0 && between_.between(row); }
 
+  bool computeValues(const GaitEvaluation<double>& e, const EvaluationKey& at) {
+    values_.rows.resize(size());
+    if (!between_.update(e, at)) return false;
+    for (int i = 0; i < size(); ++i) {
+      if (e.state[rows_[i]] == ConstraintState::NotComputed) return false;
+      values_.rows(i) = (between(i) ? between_.value(i) : e.g[rows_[i]]) / scales_[i];
+    }
+    return true;
+  }
+  // Assembled transposed (a row's gradient is a contiguous column).
+  bool computeJacobian(const GaitGradient& gr, const EvaluationKey& at) {
+    MatrixX& jac_t = jacobian_.rows;
+    jac_t.resize(gr.dg.cols(), size());
+    if (!between_.update(gr.value, at)) return false;
+    dg_t_ = gr.dg.transpose();
+    for (int i = 0; i < size(); ++i) {
+      if (gr.value.state[rows_[i]] == ConstraintState::NotComputed) return false;
+      if (between(i))
+        between_.gradient(i, gr, dg_t_, jac_t.col(i));
+      else
+        jac_t.col(i) = dg_t_.col(rows_[i]);
+      jac_t.col(i) /= scales_[i];
+    }
+    return true;
+  }
+
+  // The rows at the last point asked, by its evaluation's key: NLopt asks for every row from
+  // each of its constraint callbacks (equalities, inequalities) at the same point, and an
+  // evaluation is a deterministic function of its key, so the kept rows are the same numbers.
+  template <class Rows>
+  struct Kept {
+    std::optional<EvaluationKey> at;
+    bool ok = false;
+    Rows rows;
+  };
+
   GaitEvaluationCache& cache_;
   std::vector<int> rows_;
   std::vector<double> scales_;
   double interior_, level5_interior_;
   BetweenNodeRows between_;
+  Kept<VectorX> values_;
+  Kept<MatrixX> jacobian_;  // transposed
+  MatrixX dg_t_;
 };
 
 class SpeedConstraint : public ConstraintSet {

@@ -163,19 +163,21 @@ GaitParameters project(GaitEvaluationCache& cache, const GaitParameters& start, 
 
 // Worst scaled phase-wise value on the 10× finer check (gait/feasibility.hpp), of the DS
 // groups only when asked.
-double betweenNodesWorst(const GaitEvaluator& ev, const GaitParameters& p,
+double betweenNodesWorst(GaitEvaluationCache& cache, const GaitParameters& p,
                          bool double_support_only = false) {
-  const BetweenNodesCheck c = checkBetweenNodes(ev, p);
+  const BetweenNodesCheck& c = cache.betweenNodes(p);
   double worst = -INFINITY;
   for (int id = 0; id < static_cast<int>(c.group_worst_scaled.size()); ++id)
-    if (!double_support_only || ev.layout()[id].phase == ConstraintPhase::DoubleSupport)
+    if (!double_support_only ||
+        cache.evaluator().layout()[id].phase == ConstraintPhase::DoubleSupport)
       worst = std::max(worst, c.group_worst_scaled[id]);
   return worst;
 }
 
 // The 10× finer check, when the solve holds the rows between the nodes at all.
-bool holdsBetweenNodes(const GaitEvaluator& ev, const SolverSettings& s, const GaitParameters& p) {
-  return !s.between_nodes || betweenNodesWorst(ev, p) <= kFeasibilityTol;
+bool holdsBetweenNodes(GaitEvaluationCache& cache, const SolverSettings& s,
+                       const GaitParameters& p) {
+  return !s.between_nodes || betweenNodesWorst(cache, p) <= kFeasibilityTol;
 }
 
 bool meetsAll(const GaitEvaluator& ev, const OptimizationRequest& req,
@@ -200,7 +202,7 @@ GaitParameters polish(GaitEvaluationCache& cache, const GaitParameters& p,
                       double scale, std::ostream* log, OptimizationResult& r) {
   const GaitEvaluator& ev = cache.evaluator();
   const double before = criterionValue(cache.values(p), req.criterion);
-  const double worst_before = betweenNodesWorst(ev, p);
+  const double worst_before = betweenNodesWorst(cache, p);
   const bool repair = worst_before > kFeasibilityTol;
   const double margin = repair ? kInterior + kBetweenNodesMargin * worst_before : kInterior;
   const NlpSolution sol = solveStage(cache, p, 5, kInterior, margin, settings, "polish", log,
@@ -211,7 +213,7 @@ GaitParameters polish(GaitEvaluationCache& cache, const GaitParameters& p,
                                      });
   const GaitEvaluation<double>& e = cache.values(sol.x);
   const bool better = sol.status == NlpStatus::Solved && meetsAll(ev, req, e) &&
-                      betweenNodesWorst(ev, sol.x) <= kFeasibilityTol &&
+                      betweenNodesWorst(cache, sol.x) <= kFeasibilityTol &&
                       (repair || criterionValue(e, req.criterion) <= before * (1.0 + 1e-6));
   return better ? GaitParameters(sol.x) : p;
 }
@@ -257,7 +259,7 @@ bool closeStage(GaitEvaluationCache& cache, const OptimizationRequest& req, Gait
   // off and ended infeasible, from the closing it ends optimal at 8817.44. With friction
   // coefficient 0.8, where the solver's point is the nearer: restarted from the closing, the
   // run ended at 9496.4, from the solver's point at 8817.44.
-  const bool feasible = c.feasible && holdsBetweenNodes(cache.evaluator(), req.solver, c.x);
+  const bool feasible = c.feasible && holdsBetweenNodes(cache, req.solver, c.x);
   if (feasible ||
       (c.feasible && verdictDistance(cache, req, c.x) < verdictDistance(cache, req, p)))
     p = c.x;
@@ -431,7 +433,7 @@ GaitParameters solveFullProblem(GaitEvaluationCache& cache, GaitParameters p,
     // The DS rows between the nodes join, warm from this point, once a solve ends with a DS
     // constraint unmet there.
     if (settings.between_nodes && !settings.ds_between_nodes &&
-        betweenNodesWorst(ev, p, true) > kFeasibilityTol) {
+        betweenNodesWorst(cache, p, true) > kFeasibilityTol) {
       settings.ds_between_nodes = true;
       ds_continuation = 1;
       continue;
@@ -439,7 +441,7 @@ GaitParameters solveFullProblem(GaitEvaluationCache& cache, GaitParameters p,
     // SLSQP can stop on a short step with the rows between the nodes unmet (measured: 1.0 m/s
     // on the default robot, torque_envelope_ds 2.3e-3 scaled), a point the node-only check
     // took as done; a restart rebuilds the quasi-Newton model from it.
-    const bool solved = status == NlpStatus::Solved && holdsBetweenNodes(ev, settings, p);
+    const bool solved = status == NlpStatus::Solved && holdsBetweenNodes(cache, settings, p);
     if (meetsAll(ev, req, cache.values(p)) ? solved : closeStage(cache, req, p, status, log, r, met))
       break;
   }

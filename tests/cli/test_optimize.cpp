@@ -155,6 +155,48 @@ TEST_CASE("optimize --progress lines: stage, criterion in N^2*m*s, worst constra
   CHECK_THAT(last, Contains("constraints hold at the nodes"));
 }
 
+// The progress lines of a run, "elapsed t s" cut off (it differs between runs).
+std::vector<std::string> progressLines(const std::string& out) {
+  std::vector<std::string> lines;
+  std::istringstream in(out);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("[", 0) == 0) lines.push_back(line.substr(0, line.find("  elapsed ")));
+  return lines;
+}
+
+TEST_CASE("optimize, progress not on a terminal: each stage's last line, as --progress lines "
+          "prints it",
+          "[optimize][progress]") {
+  // Without a terminal only each stage's last line is shown, so only it is made (evaluated):
+  // it must be the line of the stage's last point, word for word.
+  const std::string out = scratch().fresh("out_progress_auto");
+  const CliRun run = runCli("optimize --config " + quoted(kDefaultConfig) + " --out " + quoted(out));
+  const CliRun every = runCli("optimize --config " + quoted(kDefaultConfig) + " --out " +
+                              quoted(scratch().fresh("out_progress_every")) + " --progress lines");
+  INFO(run.out << run.err);
+  REQUIRE(run.exit_code == 0);
+  REQUIRE(every.exit_code == 0);
+  const std::vector<std::string> shown = progressLines(run.out), all = progressLines(every.out);
+  std::vector<std::string> stage_ends;
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (i + 1 == all.size() || all[i].substr(0, all[i].find(']')) !=
+                                   all[i + 1].substr(0, all[i + 1].find(']')))
+      stage_ends.push_back(all[i]);
+  REQUIRE(stage_ends.size() >= 2);  // the full solve and the polish
+  CHECK(shown == stage_ends);
+  // Each at its stage's last iteration, as summary.json counts them.
+  const std::string summary = readFile(out + "/summary.json");
+  for (const std::string& line : shown) {
+    const std::string stage = line.substr(1, line.find("] iter ") - 1);
+    const std::size_t at = summary.find("\"name\": \"" + stage + "\"");
+    REQUIRE(at != std::string::npos);
+    const std::optional<double> iterations = jsonNumber(summary.substr(at), "iterations");
+    REQUIRE(iterations);
+    CHECK_THAT(line, Contains("] iter " + std::to_string(static_cast<int>(*iterations)) + "  "));
+  }
+  CHECK_THAT(shown.back(), Contains("constraints hold at the nodes"));
+}
+
 TEST_CASE("optimize: the CLI rejects bad input without writing anything", "[optimize]") {
   const std::string out = scratch().fresh("out_bad");
   const std::string bad = scratch().write(configWith({{10, "  backend: snopt"}}));

@@ -142,8 +142,8 @@ class ChebyshevGrid {
     dp = (t_->barycentric[j] * q + h * sum_d) / e;
   }
 
-  // The precomputed data, shared by every grid of the same degree (chebyshev.cpp keeps the
-  // recently used degrees): building it costs O(n³), 77 ms at n = 320 (the feasibility
+  // The precomputed data, shared by every grid of the same degree (math/degree_cache.hpp keeps
+  // the recently used degrees): building it costs O(n³), 77 ms at n = 320 (the feasibility
   // verdict's 10× finer check builds such grids at every call).
   struct Tables {
     Eigen::VectorXd nodes;

@@ -5,6 +5,7 @@
 // envelope theorem its gradient is Σ_k l_k(s*) ∇g_k (at a node, the node's own row). The
 // minimum over the whole grid follows from the maxima of −g.
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -20,6 +21,8 @@ struct InterpolantMaximum {
 
 // Lagrange basis at s: G(s) = l(s)·values for any nodal values (a unit vector at a node).
 Eigen::VectorXd lagrangeBasis(const ChebyshevGrid& grid, double s);
+// The same into `l` (resized), for callers that reuse one vector over many points.
+void lagrangeBasis(const ChebyshevGrid& grid, double s, Eigen::VectorXd& l);
 
 // Maximum of the interpolant of `values` over any [lo, hi] ⊂ [−1, 1] (slope: its nodal
 // derivative, grid.differentiation() · values), found as IntervalMaxima finds it between two
@@ -36,9 +39,16 @@ class IntervalMaxima {
   std::vector<InterpolantMaximum> operator()(const Eigen::VectorXd& values) const;
 
  private:
+  // Of the grid's degree, shared (math/degree_cache.hpp): an evaluation's saturation cap
+  // (interpolantMinimum) builds an IntervalMaxima each time.
+  struct Samples {
+    Eigen::VectorXd s;       // interior sample points, kSamples − 1 per interval
+    Eigen::MatrixXd matrix;  // interpolation matrix onto them
+  };
+  static Samples samplesOf(int degree);
+
   const ChebyshevGrid& grid_;
-  Eigen::VectorXd sample_s_;  // interior sample points, kSamples − 1 per interval
-  Eigen::MatrixXd sample_;    // interpolation matrix onto them
+  std::shared_ptr<const Samples> samples_;
 };
 
 // Minimum of the interpolant of `values` over [−1, 1] (nodes included): the lowest of the

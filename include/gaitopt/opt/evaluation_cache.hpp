@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "gaitopt/gait/evaluator.hpp"
+#include "gaitopt/gait/feasibility.hpp"
 
 namespace gaitopt {
 
@@ -20,6 +21,11 @@ class GaitEvaluationCache {
   const GaitEvaluator& evaluator() const { return evaluator_; }
   const GaitEvaluation<double>& values(const GaitParameters& p);
   const GaitGradient& gradient(const GaitParameters& p);
+  // Whether values(p) answers with the gradient pass's values (kept at p), not a plain pass.
+  bool holdsGradient(const GaitParameters& p) const { return gradient_at_ && *gradient_at_ == p; }
+  // The 10× finer check between the nodes (gait/feasibility.hpp) at p, kept for the last point
+  // asked (an optimisation checks its end point several times).
+  const BetweenNodesCheck& betweenNodes(const GaitParameters& p);
   // Whether gradients carry the DS piece samples' derivatives (set by the constraint set that
   // needs them, opt/gait_problem.cpp); off by default, they are the costly part of a gradient.
   void setDsPieceGradients(bool on);
@@ -35,6 +41,8 @@ class GaitEvaluationCache {
   std::optional<GaitParameters> value_at_, gradient_at_;
   GaitEvaluation<double> values_;
   GaitGradient gradient_;
+  std::optional<GaitParameters> between_nodes_at_;
+  BetweenNodesCheck between_nodes_;
   int value_count_ = 0, gradient_count_ = 0;
 };
 
