@@ -96,7 +96,8 @@ class Chain {
     // certificate ends the speed's attempts (measured on configs/default.yaml: 1.05 m/s
     // certified after its first attempt, its retry of 650 iterations saved). When its point
     // meets the one verdict, an attempt from there (measured: 0.85 m/s, whose attempts ended
-    // 8.9e-3 scaled over the DS torque envelope between the nodes, optimal from it). Otherwise
+    // 8.9e-3 scaled over the DS torque envelope between the nodes, ends from it on a step
+    // meeting the verdict, 19641.5, where the solver does not certify an optimum). Otherwise
     // retries from the nearest optimum beyond the speed and from the default initial guess,
     // and the elastic problem again from the attempt then kept. (An attempt from an elastic
     // point whose rows hold but not the verdict measured a lottery: once optimal, more often
