@@ -13,9 +13,10 @@
 // that meets the feasibility verdict is the start of one more attempt; while there is no
 // optimum the speed is retried once from the nearest optimum beyond it (further from the
 // chain's start), when there is one, then once from defaultInitialGuess, and the elastic
-// problem runs again from the attempt then kept. With jobs > 1 the list is cut into `jobs` contiguous chunks, each an independent
-// chain (started at its speed closest to the free-speed optimum) on its own thread; each
-// chunk's results are exactly those of a one-chain run on that chunk alone (e.g. a shard).
+// problem runs again from the attempt then kept. With jobs > 1 the list is cut into `jobs`
+// contiguous chunks, each an independent chain (started at its speed closest to the
+// free-speed optimum) on its own thread; each chunk's results are exactly those of a
+// one-chain run on that chunk alone (e.g. a shard).
 #include <functional>
 #include <optional>
 #include <ostream>

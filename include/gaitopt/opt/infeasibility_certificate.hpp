@@ -6,9 +6,9 @@
 // a step that cannot meet them at the nodes cannot meet them between), then, when they can be
 // met there, with the rows between the nodes (opt/gait_problem.hpp), and, when those can be met
 // but the point still breaks the verdict's 10× finer check, with the level-5 rows of that finer
-// grid (gait/feasibility.hpp: nested in the nodes, so the verdict's own rows). Its optimum s* is the
-// smallest worst scaled violation reachable from there; s* > 0 at a first-order point shows
-// the speed locally infeasible (the problem is not convex: another region of the parameters
+// grid (gait/feasibility.hpp: nested in the nodes, so the verdict's own rows). Its optimum s*
+// is the smallest worst scaled violation reachable from there; s* > 0 at a first-order point
+// shows the speed locally infeasible (the problem is not convex: another region of the parameters
 // is not excluded). Since ∂/∂s of the Lagrangian gives Σ λ_k = 1, each row's multiplier λ_k is
 // its share of the blockage: relaxing that row's bound by ε (scaled) lowers s* by λ_k ε. The
 // multipliers are those of the rows active at the point, by non-negative least squares (SLSQP
