@@ -163,6 +163,7 @@ TEST_CASE("optimize: a run that ends unmet returns the least-violating point it 
   REQUIRE(v.speed_error);
   CHECK(std::abs(*v.speed_error) <= gaitopt::kFeasibilityTolerance);
   CHECK(r.unmet_level == 5);
+  CHECK(r.unmet_constraints == std::vector<std::string>{"torque_envelope_ds"});
   // Where the last solve ended is kept for the retries of improveByRestarts: the drifted point.
   const gaitopt::FeasibilityVerdict last = gaitopt::feasibilityVerdict(
       run.evaluator, r.last_parameters, run.evaluator.evaluate(r.last_parameters));
