@@ -21,7 +21,10 @@ DsIntervalMaxima::DsIntervalMaxima(const GaitEvaluator& ev) : ev_(ev) {
   for (int id = 0; id < kNumConstraintGroups; ++id) {
     const ConstraintGroup& g = layout[id];
     if (g.phase != ConstraintPhase::DoubleSupport || g.level != 5) continue;  // the DS motion's
-    for (int sub = 0; sub < g.per_point; ++sub) sequences_.push_back({id, sub});
+    for (int sub = 0; sub < g.per_point; ++sub) {
+      sequences_.push_back({id, sub});
+      splits_.push_back(coulombSplit(ev.model(), id, sub));
+    }
   }
 }
 
@@ -46,6 +49,7 @@ bool DsIntervalMaxima::update(const GaitEvaluation<double>& e) {
   const std::vector<double> bounds = split ? e.ds_piece_bounds : std::vector<double>{0.0, T};
   const int pieces = static_cast<int>(bounds.size()) - 1;
   std::vector<Eigen::MatrixXd> values(pieces), slopes(pieces);
+  speeds_.assign(pieces, Eigen::MatrixXd());
   for (int p = 0; p < pieces; ++p) {
     values[p].resize(grid.size(), static_cast<int>(sequences_.size()));
     for (int q = 0; q < values[p].cols(); ++q)
@@ -54,6 +58,7 @@ bool DsIntervalMaxima::update(const GaitEvaluation<double>& e) {
         values[p](k, q) = split ? e.ds_piece_g[p][i] : e.g[first + i];
       }
     if (!values[p].allFinite()) return false;
+    splitPiece(e, p, values[p]);
     slopes[p] = grid.differentiation() * values[p];
   }
   std::vector<double> node_t(ev_.dsGrid().size());
@@ -85,12 +90,34 @@ void DsIntervalMaxima::maximiseInterval(int q, int j, const std::vector<Eigen::M
     if (!(b > a) || a >= hi || b <= lo) continue;
     const double s_lo = pieceCoordinate(std::max(a, lo), a, b);  // the earlier end: larger s
     const double s_hi = pieceCoordinate(std::min(b, hi), a, b);
-    const InterpolantMaximum m = maximumOn(ev_.dsPieceGrid(), values[p].col(q), slopes[p].col(q),
-                                           s_hi, s_lo);
+    const InterpolantMaximum m =
+        splits_[q].coulomb != 0.0
+            ? splitMaximumOn(ev_.dsPieceGrid(), splits_[q], values[p].col(q), speeds_[p].col(q),
+                             s_hi, s_lo)
+            : maximumOn(ev_.dsPieceGrid(), values[p].col(q), slopes[p].col(q), s_hi, s_lo);
     const bool at_node = (m.s == s_lo && a <= lo) || (m.s == s_hi && b >= hi);
     if (!at_node && m.value > best.value) best = {0, p, m.s, m.value};
   }
   maxima_[q][j] = best;
+}
+
+double DsIntervalMaxima::speedAt(const GaitEvaluation<double>& e, int p, int k, int joint) {
+  return e.ds_piece_g.empty() ? e.ds_joint_speeds[4 * k + joint]
+                              : e.ds_piece_speeds[p][4 * k + joint];
+}
+
+void DsIntervalMaxima::splitPiece(const GaitEvaluation<double>& e, int p,
+                                  Eigen::MatrixXd& values) {
+  speeds_[p] = Eigen::MatrixXd::Zero(values.rows(), values.cols());
+  for (int q = 0; q < values.cols(); ++q) {
+    const CoulombSplit& c = splits_[q];
+    if (c.coulomb == 0.0) continue;
+    for (int k = 0; k < values.rows(); ++k) {
+      const double omega = speedAt(e, p, k, c.joint);
+      values(k, q) -= c.term(omega);
+      speeds_[p](k, q) = c.sigma * omega;
+    }
+  }
 }
 
 const DsIntervalMaximum& DsIntervalMaxima::maximum(int group, int sub, int interval) const {
@@ -107,11 +134,34 @@ Eigen::VectorXd DsIntervalMaxima::gradient(int group, int sub, int interval,
   if (split && g.dds_piece_g.size() != g.value.ds_piece_g.size())
     throw std::logic_error("DS interval maxima: a gradient without the DS piece derivatives "
                            "(evaluateWithGradient's ds_piece_gradients)");
+  if (splits_[q].coulomb != 0.0) return splitGradient(q, m, g);
   const Eigen::VectorXd l = lagrangeBasis(ev_.dsPieceGrid(), m.s);
   Eigen::VectorXd out = Eigen::VectorXd::Zero(g.dg.cols());
   for (int k = 0; k < l.size(); ++k) {
     const int i = entry(sequences_[q], k);
     out += l[k] * (split ? g.dds_piece_g[m.piece].row(i) : g.dg.row(first + i)).transpose();
+  }
+  return out;
+}
+
+// Envelope theorem on h + Γs tanh(w/ε) at the piece's s*: Σ_k l_k (∇g_k − term'(ω_k) ∇ω_k)
+// + σ row'(w(s*)) Σ_k l_k ∇ω_k.
+Eigen::VectorXd DsIntervalMaxima::splitGradient(int q, const DsIntervalMaximum& m,
+                                                const GaitGradient& g) const {
+  const CoulombSplit& c = splits_[q];
+  const bool split = !g.value.ds_piece_g.empty();
+  const int first = ev_.layout().dsMotionOffset();
+  const Eigen::VectorXd l = lagrangeBasis(ev_.dsPieceGrid(), m.s);
+  double w = 0.0;
+  for (int k = 0; k < l.size(); ++k) w += l[k] * c.sigma * speedAt(g.value, m.piece, k, c.joint);
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(g.dg.cols());
+  for (int k = 0; k < l.size(); ++k) {
+    const int i = entry(sequences_[q], k);
+    const auto dg = split ? g.dds_piece_g[m.piece].row(i) : g.dg.row(first + i);
+    const auto domega = split ? g.dds_piece_speeds[m.piece].row(4 * k + c.joint)
+                              : g.dds_joint_speeds.row(4 * k + c.joint);
+    const double omega = speedAt(g.value, m.piece, k, c.joint);
+    out += l[k] * (dg - (c.slope(omega) - c.sigma * c.rowSlope(w)) * domega).transpose();
   }
   return out;
 }

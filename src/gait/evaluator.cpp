@@ -26,6 +26,13 @@ template <class AD> GaitParameters gradientOf(const AD& x, int n) {
   return x.derivatives().head(n);
 }
 
+// The gradients of a vector of AD values, one row each.
+template <class AD> Eigen::MatrixXd gradientsOf(const std::vector<AD>& x, int n) {
+  Eigen::MatrixXd d(static_cast<int>(x.size()), n);
+  for (int k = 0; k < d.rows(); ++k) d.row(k) = gradientOf(x[k], n).transpose();
+  return d;
+}
+
 }  // namespace
 
 GaitEvaluator::GaitEvaluator(const RobotParams& robot, const GaitOptions& options,
@@ -78,8 +85,7 @@ GaitGradient GaitEvaluator::gradientWith(const GaitParameters& p, bool ds_piece_
   GaitEvaluation<AD> ad;
   detail::evaluateGaitImpl(model_, options_, layout_, grids_, pad, ad, &r.value.ds_pieces,
                            ds_piece_gradients);
-  r.dg.resize(layout_.size(), n);
-  for (int k = 0; k < layout_.size(); ++k) r.dg.row(k) = gradientOf(ad.g[k], n).transpose();
+  r.dg = gradientsOf(ad.g, n);
   r.dC_Gamma = gradientOf(ad.C_Gamma, n);
   r.dC_E = gradientOf(ad.C_E, n);
   r.dW = gradientOf(ad.W, n);
@@ -87,16 +93,13 @@ GaitGradient GaitEvaluator::gradientWith(const GaitParameters& p, bool ds_piece_
   r.dT_SS = gradientOf(ad.T_SS, n);
   r.dT_DS = gradientOf(ad.T_DS, n);
   r.dspeed = gradientOf(ad.speed, n);
-  r.dcriteria_kinks.resize(static_cast<int>(ad.criteria_kinks.size()), n);
-  for (int k = 0; k < r.dcriteria_kinks.rows(); ++k)
-    r.dcriteria_kinks.row(k) = gradientOf(ad.criteria_kinks[k], n).transpose();
-  r.dtorque_residuals.resize(static_cast<int>(ad.torque_residuals.size()), n);
-  for (int k = 0; k < r.dtorque_residuals.rows(); ++k)
-    r.dtorque_residuals.row(k) = gradientOf(ad.torque_residuals[k], n).transpose();
-  for (const auto& piece : ad.ds_piece_g) {
-    Eigen::MatrixXd& d = r.dds_piece_g.emplace_back(static_cast<int>(piece.size()), n);
-    for (int k = 0; k < d.rows(); ++k) d.row(k) = gradientOf(piece[k], n).transpose();
-  }
+  r.dcriteria_kinks = gradientsOf(ad.criteria_kinks, n);
+  r.dtorque_residuals = gradientsOf(ad.torque_residuals, n);
+  r.dss_joint_speeds = gradientsOf(ad.ss_joint_speeds, n);
+  r.dds_joint_speeds = gradientsOf(ad.ds_joint_speeds, n);
+  for (const auto& piece : ad.ds_piece_g) r.dds_piece_g.push_back(gradientsOf(piece, n));
+  for (const auto& piece : ad.ds_piece_speeds)
+    r.dds_piece_speeds.push_back(gradientsOf(piece, n));
   return r;
 }
 

@@ -4,7 +4,9 @@
 #include <map>
 #include <optional>
 
+#include "gaitopt/gait/coulomb_split.hpp"
 #include "gaitopt/gait/ds_interval_maxima.hpp"
+#include "gaitopt/gait/feasibility.hpp"
 #include "gaitopt/math/chebyshev_maxima.hpp"
 
 namespace gaitopt {
@@ -115,8 +117,12 @@ class BetweenNodeRows {
         if (node < last) r = {id, (k - g.offset) % g.per_point, node};
       }
       uses_pieces_ = uses_pieces_ || piecewise(r.group);
-      if (r.group >= 0 && !piecewise(r.group) && !sequences_.count(key(r)))
+      if (r.group >= 0 && !piecewise(r.group) && !sequences_.count(key(r))) {
         sequences_[key(r)] = sequenceOf(r);
+        const CoulombSplit split = coulombSplit(ev.model(), r.group, r.sub);
+        if (split.coulomb != 0.0 && fine_.size() == 0) fine_ = fineInterpolation(ev.ssGrid());
+        if (split.coulomb != 0.0) splits_[key(r)] = split;
+      }
       rows_.push_back(r);
     }
   }
@@ -126,13 +132,19 @@ class BetweenNodeRows {
     if (at_ && *at_ == at) return true;
     at_.reset();
     maxima_.clear();
+    sampled_.clear();
     if (uses_pieces_ && !ds_pieces_.update(e)) return false;
     for (const BetweenNodeRow& r : rows_) {
-      if (r.group < 0 || piecewise(r.group) || maxima_.count(key(r))) continue;
+      if (r.group < 0 || piecewise(r.group) || maxima_.count(key(r)) || sampled_.count(key(r)))
+        continue;
       Eigen::VectorXd values = Eigen::VectorXd::Zero(grid(ev_.layout()[r.group]).size());
       for (const auto& [node, k] : sequences_.at(key(r))) {
         if (e.state[k] == ConstraintState::NotComputed) return false;
         values[node] = e.g[k];
+      }
+      if (splits_.count(key(r))) {
+        sampled_[key(r)] = splitMaxima(splits_.at(key(r)), r, e, values);
+        continue;
       }
       const bool ss = ev_.layout()[r.group].phase == ConstraintPhase::SingleSupport;
       maxima_[key(r)] = (ss ? ss_ : ds_)(values);
@@ -145,8 +157,8 @@ class BetweenNodeRows {
   bool between(int row) const { return rows_[row].group >= 0; }
   double value(int row) const {
     const BetweenNodeRow& r = rows_[row];
-    return piecewise(r.group) ? ds_pieces_.maximum(r.group, r.sub, r.interval).value
-                              : maximum(row).value;
+    if (piecewise(r.group)) return ds_pieces_.maximum(r.group, r.sub, r.interval).value;
+    return splits_.count(key(r)) ? sampled(row).value : maximum(row).value;
   }
   // Envelope theorem: Σ_m l_m(s*) ∇g_m into `out`; dg_t = gr.dg transposed, so that each ∇g_m
   // is a contiguous column (a Jacobian sums ~30 of them for each of ~1000 rows).
@@ -157,12 +169,17 @@ class BetweenNodeRows {
       out = ds_pieces_.gradient(r.group, r.sub, r.interval, gr);
       return;
     }
-    lagrangeBasis(grid(ev_.layout()[r.group]), maximum(row).s, basis_);
+    const auto split = splits_.find(key(r));
+    if (split == splits_.end())
+      lagrangeBasis(grid(ev_.layout()[r.group]), maximum(row).s, basis_);
+    else
+      basis_ = fine_.row(sampled(row).sample).transpose();
     const Sequence& q = sequences_.at(key(r));
     if (out.size() == kNumGaitParameters)
       sumColumns<Eigen::Matrix<double, kNumGaitParameters, 1>>(q, dg_t, out);
     else
       sumColumns<VectorX>(q, dg_t, out);
+    if (split != splits_.end()) addCoulombGradient(split->second, row, gr, out);
   }
 
  private:
@@ -182,6 +199,57 @@ class BetweenNodeRows {
   const InterpolantMaximum& maximum(int row) const {
     return maxima_.at(key(rows_[row]))[rows_[row].interval];
   }
+  // A split row's value on an interval: its largest sample, the verdict's finer grid's node.
+  struct SampledMaximum {
+    int sample = 0;  // node of the finer grid
+    double value = 0.0;
+    double w = 0.0;  // σω there
+  };
+  const SampledMaximum& sampled(int row) const {
+    return sampled_.at(key(rows_[row]))[rows_[row].interval];
+  }
+  // Interpolation from the SS nodes onto the verdict's finer grid, whose node
+  // kBetweenNodesRefinement·k is node k.
+  static MatrixX fineInterpolation(const ChebyshevGrid& grid) {
+    const ChebyshevGrid fine(grid.degree() * kBetweenNodesRefinement);
+    MatrixX p(fine.size(), grid.size());
+    Eigen::VectorXd l;
+    for (int i = 0; i < fine.size(); ++i) {
+      lagrangeBasis(grid, fine.nodes()[i], l);
+      p.row(i) = l.transpose();
+    }
+    return p;
+  }
+  double jointSpeed(const GaitEvaluation<double>& e, const CoulombSplit& c, int node) const {
+    return e.ss_joint_speeds[4 * node + c.joint];
+  }
+  // gait/coulomb_split.hpp: the row's node values `g` become its smooth part h; h and σω are
+  // interpolated onto the finer grid, where each interval's largest row is kept.
+  std::vector<SampledMaximum> splitMaxima(const CoulombSplit& c, const BetweenNodeRow& r,
+                                          const GaitEvaluation<double>& e, Eigen::VectorXd& g) {
+    Eigen::VectorXd speed = Eigen::VectorXd::Zero(g.size());
+    for (const auto& [node, k] : sequences_.at(key(r))) {
+      g[node] -= c.term(jointSpeed(e, c, node));
+      speed[node] = c.sigma * jointSpeed(e, c, node);
+    }
+    const Eigen::VectorXd h = fine_ * g, w = fine_ * speed;
+    std::vector<SampledMaximum> out(g.size() - 1);
+    for (int k = 0; k + 1 < g.size(); ++k)
+      for (int i = kBetweenNodesRefinement * k; i <= kBetweenNodesRefinement * (k + 1); ++i)
+        if (i == kBetweenNodesRefinement * k || c.row(h[i], w[i]) > out[k].value)
+          out[k] = {i, c.row(h[i], w[i]), w[i]};
+    return out;
+  }
+  // The row's gradient beyond Σ_m P_m ∇g_m (in `out`, P the sample's interpolation row):
+  // Σ_m c_m ∇ω_m with c_m = P_m (σ row'(w) − term'(ω_m)), the sample held fixed.
+  void addCoulombGradient(const CoulombSplit& c, int row, const GaitGradient& gr,
+                          Eigen::Ref<VectorX> out) {
+    const double top = c.sigma * c.rowSlope(sampled(row).w);
+    for (const auto& [node, k] : sequences_.at(key(rows_[row]))) {
+      const double coefficient = basis_[node] * (top - c.slope(jointSpeed(gr.value, c, node)));
+      out += coefficient * gr.dss_joint_speeds.row(4 * node + c.joint).transpose();
+    }
+  }
   // (node, layout entry) of every entry of a row's sequence.
   Sequence sequenceOf(const BetweenNodeRow& r) const {
     const ConstraintGroup& g = ev_.layout()[r.group];
@@ -197,6 +265,9 @@ class BetweenNodeRows {
   bool uses_pieces_ = false;
   std::vector<BetweenNodeRow> rows_;
   std::map<int, std::vector<InterpolantMaximum>> maxima_;
+  std::map<int, CoulombSplit> splits_;  // by key, the rows with Coulomb friction
+  std::map<int, std::vector<SampledMaximum>> sampled_;  // by key, theirs
+  MatrixX fine_;  // fineInterpolation, when a row is split
   std::map<int, Sequence> sequences_;  // by key, the smooth groups'
   std::optional<EvaluationKey> at_;  // of maxima_
   Eigen::VectorXd basis_;            // the Lagrange basis of the row at hand

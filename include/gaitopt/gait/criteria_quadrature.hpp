@@ -148,18 +148,21 @@ template <class S> S switchTimeWithDerivative(EvalContext<S>& c, const DsPieces&
 }
 
 // The DS level-5 entries of sample k of a piece, with the piece's branch, so that the
-// constraints can be held between the DS nodes on smooth pieces (GaitEvaluation::ds_piece_g).
+// constraints can be held between the DS nodes on smooth pieces (GaitEvaluation::ds_piece_g),
+// and the joint speeds there (GaitEvaluation::ds_piece_speeds).
 template <class S>
 void recordPieceSample(EvalContext<S>& c, const std::vector<S>& ends, std::size_t piece, int k,
                        const PhaseSample<S>& s) {
   std::vector<std::vector<S>>& g = c.out.ds_piece_g;
   if (g.empty()) {
     g.assign(ends.size() + 1, std::vector<S>(c.layout.dsMotionSize()));
+    c.out.ds_piece_speeds.assign(ends.size() + 1, std::vector<S>(4 * c.piece_grid.size()));
     c.out.ds_piece_bounds = {0.0};
     for (const S& t : ends) c.out.ds_piece_bounds.push_back(valueOf(t));
     c.out.ds_piece_bounds.push_back(valueOf(c.out.motion.T_DS));
   }
   std::vector<S>& v = g[piece];
+  for (int j = 0; j < 4; ++j) c.out.ds_piece_speeds[piece][4 * k + j] = s.omega(j);
   const int first = c.layout.dsMotionOffset();
   dsConstraintValues(c, k, s, [&c, &v, first](int group, int index, const S& value) {
     v[c.layout[group].offset + index - first] = value;

@@ -6,9 +6,11 @@
 // spectrally. The maximum of an entry's sequence between DS nodes j and j + 1 is the largest
 // of the two node values, the values at the switch times inside (piece ends) and the maxima of
 // the piece interpolants on the pieces' parts of the interval. Without a switch the DS node
-// values are the one piece.
+// values are the one piece. The torque rows of joints with Coulomb friction are split
+// (gait/coulomb_split.hpp): a piece's maximum is that of h + Γs tanh(w/ε).
 #include <vector>
 
+#include "gaitopt/gait/coulomb_split.hpp"
 #include "gaitopt/gait/evaluator.hpp"
 
 namespace gaitopt {
@@ -47,9 +49,16 @@ class DsIntervalMaxima {
                         const std::vector<Eigen::MatrixXd>& slopes,
                         const std::vector<double>& bounds, const std::vector<double>& node_t,
                         const GaitEvaluation<double>& e);
+  // ω_j of piece p's sample k (without a switch: DS node k).
+  static double speedAt(const GaitEvaluation<double>& e, int p, int k, int joint);
+  // The split sequences' node values of piece p made their smooth parts h, and σω beside them.
+  void splitPiece(const GaitEvaluation<double>& e, int p, Eigen::MatrixXd& values);
+  Eigen::VectorXd splitGradient(int q, const DsIntervalMaximum& m, const GaitGradient& g) const;
 
   const GaitEvaluator& ev_;
   std::vector<Sequence> sequences_;
+  std::vector<CoulombSplit> splits_;           // [sequence]; coulomb 0: not split
+  std::vector<Eigen::MatrixXd> speeds_;        // [piece]: σω at its samples, [sample][sequence]
   std::vector<std::vector<DsIntervalMaximum>> maxima_;  // [sequence][interval]
 };
 

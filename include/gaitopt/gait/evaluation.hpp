@@ -64,6 +64,14 @@ template <class S> struct GaitEvaluation {
   // Γ*_j / √|phase rate| at the SS nodes, then at the DS (or DS piece) nodes. Their Jacobian J
   // gives the Gauss–Newton Hessian 2 JᵀJ of C_Γ.
   std::vector<S> torque_residuals;
+  // The joint-side speeds ω (1.20) at the SS nodes, ω_j of node k at 4k + j: the turn of the
+  // Coulomb friction's smooth sign with ω (1.21) is what the SS torque rows between the nodes
+  // take apart (gait/coulomb_split.hpp).
+  std::vector<S> ss_joint_speeds;
+  // The same at the DS nodes, and at each DS piece's samples (one vector per piece, as
+  // ds_piece_g, when that is recorded).
+  std::vector<S> ds_joint_speeds;
+  std::vector<std::vector<S>> ds_piece_speeds;
 
   // Defined in the thesis' sense: every level below the criterion's (0–4) holds.
   bool defined() const { return failed_level < 0 || failed_level >= 5; }

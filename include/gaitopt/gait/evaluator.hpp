@@ -32,6 +32,9 @@ struct GaitGradient {
   GaitParameters dC_Gamma, dC_E, dW, dC_frott, dT_SS, dT_DS, dspeed;
   Eigen::MatrixXd dcriteria_kinks;  // rows: the AD pass's criteria_kinks (implicit functions)
   Eigen::MatrixXd dtorque_residuals;  // rows: value.torque_residuals
+  Eigen::MatrixXd dss_joint_speeds;   // rows: value.ss_joint_speeds
+  Eigen::MatrixXd dds_joint_speeds;   // rows: value.ds_joint_speeds
+  std::vector<Eigen::MatrixXd> dds_piece_speeds;  // per DS piece: rows as value.ds_piece_speeds
   std::vector<Eigen::MatrixXd> dds_piece_g;  // per DS piece: rows as value.ds_piece_g
 };
 

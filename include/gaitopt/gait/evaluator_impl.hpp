@@ -35,6 +35,7 @@ template <class S> std::array<S, 4> dsMotionStage(EvalContext<S>& c, ConstraintS
     for (int i = 0; i < 6; ++i) switching[k][i] = valueOf(s.switching[i]);
     branch[k] = s.branch;
     dsConstraintValues(c, k, s, layoutWriter(c, st));
+    for (int j = 0; j < 4; ++j) c.out.ds_joint_speeds.push_back(s.omega(j));
     setIntegrands(c.model, s, k, S(1.0), ds_int);
   }
   c.out.ds_pieces = c.known_pieces ? *c.known_pieces : dsPieces(c, ts, branch, switching);
@@ -55,6 +56,7 @@ void motionStage(EvalContext<S>& c, const std::vector<SsPathPoint<S>>& pts) {
     const S& ad = mo.ss_alphadot(k);
     const PhaseSample<S> s = ssSample(c.model, pts[k], ad, mo.ss_alphaddot(k));
     ssConstraintValues(c, k, nss, s, layoutWriter(c, st));
+    for (int j = 0; j < 4; ++j) c.out.ss_joint_speeds.push_back(s.omega(j));
     setIntegrands(c.model, s, k, ad, ss_int);  // dt = dα / α̇ (3.29)
   }
   if (c.layout.has(kTouchdownSpeed))  // the arriving foot's speed at the SS end's rate
@@ -98,6 +100,9 @@ template <class S> void discardNonFiniteMotion(EvalContext<S>& c) {
   out.C_Gamma = out.C_E = out.W = out.C_frott = S(0.0);
   out.criteria_kinks.clear();
   out.torque_residuals.clear();
+  out.ss_joint_speeds.clear();
+  out.ds_joint_speeds.clear();
+  out.ds_piece_speeds.clear();
   out.ss_criteria_kinks = 0;
   out.ds_piece_g.clear();
   out.ds_piece_bounds.clear();
