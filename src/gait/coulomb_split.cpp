@@ -6,71 +6,60 @@
 namespace gaitopt {
 namespace {
 
-// Samples per unit of the grid's coordinate: the turn spans ~ε/|ω̇| in time, a tenth of a DS
-// piece or more on the shipped gaits; Newton then finds the maximum between two samples.
+// Samples per unit of the grid's coordinate, at least kMinSamples on an interval: the turn
+// spans ~ε/|ω̇| in time, a tenth of a DS piece or more on the shipped gaits; Newton then finds
+// the maximum between two samples.
 constexpr int kSamplesPerUnit = 32;
+constexpr int kMinSamples = 10;
 constexpr int kNewtonSteps = 20;
-
-// The row and its first two derivatives in s at one point.
-struct RowAt {
-  double value, slope, curvature;
-};
-
-struct SplitInterpolants {
-  const ChebyshevGrid& grid;
-  const CoulombSplit& c;
-  const Eigen::VectorXd &h, &w;
-  Eigen::VectorXd h1, h2, w1, w2;  // derivatives at the nodes
-  Eigen::VectorXd l;               // the Lagrange basis at the point at hand
-
-  SplitInterpolants(const ChebyshevGrid& g, const CoulombSplit& split, const Eigen::VectorXd& hv,
-                    const Eigen::VectorXd& wv)
-      : grid(g), c(split), h(hv), w(wv) {
-    const Eigen::MatrixXd& d = grid.differentiation();
-    h1 = d * h;
-    h2 = d * h1;
-    w1 = d * w;
-    w2 = d * w1;
-  }
-  double value(double s) {
-    lagrangeBasis(grid, s, l);
-    return c.row(l.dot(h), l.dot(w));
-  }
-  RowAt at(double s) {
-    lagrangeBasis(grid, s, l);
-    const double wv = l.dot(w), ws = l.dot(w1);
-    return {c.row(l.dot(h), wv), l.dot(h1) + c.rowSlope(wv) * ws,
-            l.dot(h2) + c.rowSlope(wv) * l.dot(w2) + c.rowCurvature(wv) * ws * ws};
-  }
-};
 
 }  // namespace
 
-InterpolantMaximum splitMaximumOn(const ChebyshevGrid& grid, const CoulombSplit& c,
-                                  const Eigen::VectorXd& h, const Eigen::VectorXd& w, double lo,
-                                  double hi) {
-  SplitInterpolants f(grid, c, h, w);
-  const int n = std::max(2, static_cast<int>(std::ceil(kSamplesPerUnit * (hi - lo))));
-  const double step = (hi - lo) / n;
-  InterpolantMaximum best{lo, f.value(lo)};
-  for (int i = 1; i <= n; ++i) {
-    const double s = i == n ? hi : lo + i * step;
-    const double v = f.value(s);
-    if (v > best.value) best = {s, v};
-  }
-  // Newton on the derivative within the samples around the best one, kept if it climbs.
-  const double a = std::max(lo, best.s - step), b = std::min(hi, best.s + step);
-  double s = best.s;
+SplitRow::SplitRow(const ChebyshevGrid& grid, const CoulombSplit& c, const Eigen::VectorXd& h,
+                   const Eigen::VectorXd& w)
+    : grid_(grid), c_(c), h_(h), w_(w) {
+  const Eigen::MatrixXd& d = grid.differentiation();
+  h1_ = d * h_;
+  h2_ = d * h1_;
+  w1_ = d * w_;
+  w2_ = d * w1_;
+}
+
+double SplitRow::value(double s) {
+  lagrangeBasis(grid_, s, l_);
+  return c_.row(l_.dot(h_), l_.dot(w_));
+}
+
+SplitRow::At SplitRow::at(double s) {
+  lagrangeBasis(grid_, s, l_);
+  const double w = l_.dot(w_), ws = l_.dot(w1_);
+  return {c_.row(l_.dot(h_), w), l_.dot(h1_) + c_.rowSlope(w) * ws,
+          l_.dot(h2_) + c_.rowSlope(w) * l_.dot(w2_) + c_.rowCurvature(w) * ws * ws};
+}
+
+InterpolantMaximum SplitRow::refine(const InterpolantMaximum& start, double a, double b) {
+  double s = start.s;
   for (int it = 0; it < kNewtonSteps; ++it) {
-    const RowAt r = f.at(s);
+    const At r = at(s);
     if (!(r.curvature < 0.0)) break;
     const double next = std::clamp(s - r.slope / r.curvature, a, b);
     if (std::abs(next - s) <= 1e-14) break;
     s = next;
   }
-  const double v = f.value(s);
-  if (v > best.value) best = {s, v};
-  return best;
+  const double v = value(s);
+  return v > start.value ? InterpolantMaximum{s, v} : start;
+}
+
+InterpolantMaximum SplitRow::maximumOn(double lo, double hi) {
+  const int n = std::max(kMinSamples, static_cast<int>(std::ceil(kSamplesPerUnit * (hi - lo))));
+  const double step = (hi - lo) / n;
+  InterpolantMaximum best{lo, value(lo)};
+  for (int i = 1; i <= n; ++i) {
+    const double s = i == n ? hi : lo + i * step;
+    const double v = value(s);
+    if (v > best.value) best = {s, v};
+  }
+  return refine(best, std::max(lo, best.s - step), std::min(hi, best.s + step));
 }
 
 }  // namespace gaitopt

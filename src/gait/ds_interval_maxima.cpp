@@ -92,8 +92,8 @@ void DsIntervalMaxima::maximiseInterval(int q, int j, const std::vector<Eigen::M
     const double s_hi = pieceCoordinate(std::min(b, hi), a, b);
     const InterpolantMaximum m =
         splits_[q].coulomb != 0.0
-            ? splitMaximumOn(ev_.dsPieceGrid(), splits_[q], values[p].col(q), speeds_[p].col(q),
-                             s_hi, s_lo)
+            ? SplitRow(ev_.dsPieceGrid(), splits_[q], values[p].col(q), speeds_[p].col(q))
+                  .maximumOn(s_hi, s_lo)
             : maximumOn(ev_.dsPieceGrid(), values[p].col(q), slopes[p].col(q), s_hi, s_lo);
     const bool at_node = (m.s == s_lo && a <= lo) || (m.s == s_hi && b >= hi);
     if (!at_node && m.value > best.value) best = {0, p, m.s, m.value};

@@ -10,9 +10,10 @@
 // nodes, and the row between them is
 //     g ≈ h + Γs tanh(w/ε),
 // exact at the nodes, and between them up to the interpolation error of h and ω, which are
-// smooth (the interpolant of g itself is off by up to 2Γs). The SS rows take it at the points
-// of the verdict's 10× finer check (opt/gait_problem.cpp); the DS rows, piecewise already
-// (gait/ds_interval_maxima.hpp), at its maximum on each piece (splitMaximumOn).
+// smooth (the interpolant of g itself is off by up to 2Γs). An SS row is its largest value at
+// the points of the verdict's 10× finer check inside the interval (opt/gait_problem.cpp), so
+// that the row and the verdict see the same turn; a DS row, piecewise already
+// (gait/ds_interval_maxima.hpp), its maximum on each piece's part of the interval (SplitRow).
 #include <cmath>
 
 #include <Eigen/Core>
@@ -62,11 +63,29 @@ inline CoulombSplit coulombSplit(const Model& m, int group, int sub) {
   return c;
 }
 
-// The maximum over [lo, hi] (the grid's coordinate) of the row h + Γs tanh(w/ε), h and w the
-// interpolants of their node values: the best of evenly spaced samples, refined by Newton on
-// the row's derivative, so that the envelope theorem gives its gradient.
-InterpolantMaximum splitMaximumOn(const ChebyshevGrid& grid, const CoulombSplit& c,
-                                  const Eigen::VectorXd& h, const Eigen::VectorXd& w, double lo,
-                                  double hi);
+// One split row between the nodes of a grid: h + Γs tanh(w/ε), h and w the interpolants of
+// their node values.
+class SplitRow {
+ public:
+  SplitRow(const ChebyshevGrid& grid, const CoulombSplit& c, const Eigen::VectorXd& h,
+           const Eigen::VectorXd& w);
+  double value(double s);
+  // The maximum over [lo, hi]: the best of evenly spaced samples, refined by Newton on the
+  // row's derivative, so that at an interior maximum the envelope theorem gives the gradient.
+  InterpolantMaximum maximumOn(double lo, double hi);
+
+ private:
+  struct At {
+    double value, slope, curvature;
+  };
+  At at(double s);
+  // Newton from `start` within [a, b]: the better of the two.
+  InterpolantMaximum refine(const InterpolantMaximum& start, double a, double b);
+
+  const ChebyshevGrid& grid_;
+  const CoulombSplit& c_;
+  Eigen::VectorXd h_, w_, h1_, h2_, w1_, w2_;  // values and derivatives at the nodes
+  Eigen::VectorXd l_;                           // the Lagrange basis at the point at hand
+};
 
 }  // namespace gaitopt
