@@ -27,7 +27,7 @@ GAITS=(
   "default_step|configs/default.yaml|||The C_Gamma-minimising walking step of the default robot at 0.5 m/s (the default optimum)"
   "optimal_0.3|configs/default.yaml|0.3|--random-starts 8|The C_Gamma-minimising walking step of the default robot at 0.3 m/s"
   "optimal_0.8|configs/default.yaml|0.8||The C_Gamma-minimising walking step of the default robot at 0.8 m/s"
-  "default_impact|configs/default_impact.yaml|||The C_Gamma-minimising step of the default robot at 0.5 m/s landing with an impact at a downward foot speed of at least 0.5 m/s, then single support, with a margin on the single support's energy (alphadot_margin 0.45 rad/s)"
+  "default_impact|configs/default_impact.yaml||--random-starts 8|The C_Gamma-minimising step of the default robot at 0.5 m/s landing with an impact at a downward foot speed of at least 0.5 m/s, then single support, with a margin on the single support's energy (alphadot_margin 0.45 rad/s)"
   "chesse_0.85_ipopt|configs/chesse_0.85_ipopt.yaml|||Chesse's model at 0.85 m/s, C_Gamma-minimising with the thesis' 17-parameter step, solved by Ipopt"
   "chesse_0.85|configs/chesse_0.85.yaml|||Chesse's model (rabbit_chesse.yaml) at 0.85 m/s, C_Gamma-minimising with the thesis' 17-parameter step (SLSQP)"
   "chesse_0.85_impact|configs/chesse_0.85_impact.yaml|||Chesse's model at 0.85 m/s, C_Gamma-minimising with an impact landing at a downward foot speed of at least 0.37 m/s, then single support, {ss_points: 3}: the Chesse gait the walking controller walks"

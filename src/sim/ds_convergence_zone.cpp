@@ -85,6 +85,9 @@ double interpolate(const DsPhaseCurve& c, double alpha) {
     if ((alpha - a) * (alpha - b) <= 0.0)
       return a == b ? c.alphad[i] : c.alphad[i - 1] + (alpha - a) / (b - a) * (c.alphad[i] - c.alphad[i - 1]);
   }
+  // A curve integrated up to α (its end) may stop a rounding error short of it.
+  const double tolerance = 1e-12 * std::max(1.0, std::abs(alpha));
+  if (!c.alpha.empty() && std::abs(alpha - c.alpha.back()) <= tolerance) return c.alphad.back();
   return kNaN;
 }
 
