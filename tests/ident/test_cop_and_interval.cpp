@@ -125,7 +125,7 @@ TEST_CASE("measured-data CSV: the centres of pressure round-trip and need the re
 TEST_CASE("diagnose uses the centres of pressure, a compliant ground is not explained",
           "[ident][diagnose][cop]") {
   SECTION("rocker: the fitted radius agrees with the centres of pressure") {
-    const MeasuredData d = synth({{EffectKind::RockerFoot, kNoJoint, 0.05}}, {}, 5, 12);
+    const MeasuredData d = synth({{EffectKind::RockerFoot, kNoJoint, 0.05}}, {}, 5, 20);
     const Diagnosis dg = diagnose(gait().robot, gait().model_options, d);
     REQUIRE(dg.causes.size() == 1);
     CHECK(dg.causes[0].effect.kind == EffectKind::RockerFoot);

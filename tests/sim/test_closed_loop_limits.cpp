@@ -160,7 +160,9 @@ TEST_CASE("Contact projection: a faster start walks with its DS normal force hel
   WalkRequest req = gaitRequest(f.gait.options, 2);
   REQUIRE(req.min_normal_force == 20.0);  // the gait's min_normal_force
   const TouchdownMap td = gaitTouchdown(f.gait.options, "auto", req.friction_coefficient);
-  req.dalphad0 = -0.01;
+  // 2 % faster: the free DS pulls the rear foot off the ground (the gait's DS normal force
+  // sits at its 20 N bound).
+  req.dalphad0 = -0.02;
   req.torque_limits = false;
   const WalkResult free = simulateWalk(f.evaluation, f.model, f.model, req, td);
   CHECK(free.outcome == WalkOutcome::StanceLiftOff);
@@ -176,9 +178,10 @@ TEST_CASE("Contact projection: a faster start walks with its DS normal force hel
         if (!s.single_support) least = std::min({least, s.R1(1), s.R2(1)});
       CHECK(least >= r_min - 1e-6);
       CHECK(least <= r_min + 1e-3);  // the bound was active
-      // Held at 20 N the DS gives way on α: the cycle's α̇ is restored to 10⁻⁴, not 10⁻⁶.
+      // The DS gives way on α where the force is held: after one step the cycle's α̇ is
+      // restored to 0.5 % of the perturbation.
       CHECK(held.steps[1].alphad_start ==
-            Approx(f.evaluation.motion.alphadot_iSS).margin(r_min > 0.0 ? 1e-4 : 1e-6));
+            Approx(f.evaluation.motion.alphadot_iSS).margin(0.005 * std::abs(req.dalphad0)));
     }
   }
 }

@@ -90,8 +90,8 @@ TEST_CASE("Walking map: sensitivity Jacobian agrees with central finite differen
     CHECK(L.fixed_point_residual < 1e-9);
     // Every entry is below 1e-6 here: the check is at the accuracy of both, the differences'
     // noise (a map error of ~1e-11 over the step 1e-4) and the sensitivities' absolute
-    // tolerance (1e-8 per CVODE step).
-    CHECK((L.jacobian - fd).cwiseAbs().maxCoeff() < 5e-7);
+    // tolerance (1e-8 per CVODE step, over the few hundred steps of a walking step).
+    CHECK((L.jacobian - fd).cwiseAbs().maxCoeff() < 1e-6);
     CHECK(std::abs(L.eigenvalues(0)) < 1e-7);
   }
 }
