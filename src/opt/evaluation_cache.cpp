@@ -39,6 +39,32 @@ void GaitEvaluationCache::setDsPieceGradients(bool on) {
   ds_piece_gradients_ = on;
 }
 
+namespace {
+
+// Column i of `d` (rows: the point's `values`): the central differences of the two sides'
+// values, left at zero when a side has another number of them (another DS split).
+void differenceColumn(Eigen::MatrixXd& d, int i, int n, const std::vector<double>& values,
+                      const std::vector<double>& plus, const std::vector<double>& minus,
+                      double h) {
+  if (d.size() == 0) d.setZero(static_cast<int>(values.size()), n);
+  if (plus.size() != values.size() || minus.size() != values.size()) return;
+  for (int k = 0; k < d.rows(); ++k) d(k, i) = (plus[k] - minus[k]) / (2.0 * h);
+}
+
+// The same for one vector per DS piece.
+void differencePieces(std::vector<Eigen::MatrixXd>& d, int i, int n,
+                      const std::vector<std::vector<double>>& values,
+                      const std::vector<std::vector<double>>& plus,
+                      const std::vector<std::vector<double>>& minus, double h) {
+  d.resize(values.size());
+  const bool same = plus.size() == values.size() && minus.size() == values.size();
+  for (std::size_t piece = 0; piece < d.size(); ++piece)
+    differenceColumn(d[piece], i, n, values[piece], same ? plus[piece] : std::vector<double>(),
+                     same ? minus[piece] : std::vector<double>(), h);
+}
+
+}  // namespace
+
 // Step h_i = 1e-6 · max(1, |p_i|): near the optimum of the truncation/rounding trade-off for
 // central differences of double-precision values.
 GaitGradient GaitEvaluationCache::finiteDifferenceGradient(const GaitParameters& p) {
@@ -67,15 +93,15 @@ GaitGradient GaitEvaluationCache::finiteDifferenceGradient(const GaitParameters&
     r.dT_SS(i) = diff(ep.T_SS, em.T_SS);
     r.dT_DS(i) = diff(ep.T_DS, em.T_DS);
     r.dspeed(i) = diff(ep.speed, em.speed);
-    // The DS piece samples, when both sides split the DS as the point does.
-    r.dds_piece_g.resize(r.value.ds_piece_g.size());
-    for (std::size_t piece = 0; piece < r.dds_piece_g.size(); ++piece) {
-      Eigen::MatrixXd& d = r.dds_piece_g[piece];
-      if (d.size() == 0) d.setZero(static_cast<int>(r.value.ds_piece_g[piece].size()), n);
-      if (ep.ds_piece_g.size() != r.dds_piece_g.size() || em.ds_piece_g.size() != r.dds_piece_g.size())
-        continue;
-      for (int k = 0; k < d.rows(); ++k) d(k, i) = diff(ep.ds_piece_g[piece][k], em.ds_piece_g[piece][k]);
-    }
+    // The joint speeds and the DS piece samples, when both sides split the DS as the point.
+    const GaitEvaluation<double>& e = r.value;
+    differenceColumn(r.dss_joint_speeds, i, n, e.ss_joint_speeds, ep.ss_joint_speeds,
+                     em.ss_joint_speeds, h);
+    differenceColumn(r.dds_joint_speeds, i, n, e.ds_joint_speeds, ep.ds_joint_speeds,
+                     em.ds_joint_speeds, h);
+    differencePieces(r.dds_piece_g, i, n, e.ds_piece_g, ep.ds_piece_g, em.ds_piece_g, h);
+    differencePieces(r.dds_piece_speeds, i, n, e.ds_piece_speeds, ep.ds_piece_speeds,
+                     em.ds_piece_speeds, h);
   }
   return r;
 }

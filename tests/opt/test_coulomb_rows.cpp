@@ -36,8 +36,9 @@ struct Rows {
 };
 
 Rows rowsAt(const GaitEvaluator& ev, const VectorX& x, bool jacobian,
-              gaitopt::BetweenNodes which = gaitopt::BetweenNodes::SingleSupport) {
-  gaitopt::GaitEvaluationCache cache(ev);
+            gaitopt::BetweenNodes which = gaitopt::BetweenNodes::SingleSupport,
+            gaitopt::GradientMode gradients = gaitopt::GradientMode::Exact) {
+  gaitopt::GaitEvaluationCache cache(ev, gradients);
   Rows r;
   r.entries = gaitopt::hierarchyEntries(ev.layout(), 5);
   auto set = gaitopt::makeHierarchyConstraints(cache, r.entries, 1e-6, 0.0, which);
@@ -195,4 +196,24 @@ TEST_CASE("coulomb rows: without Coulomb friction the rows are the node interpol
     for (int k = 0; k + 1 < n; ++k)
       CHECK(rows.values(rowOf(rows, layout, k, sub)) == interpolant[k].value / scale);
   }
+}
+
+TEST_CASE("coulomb rows: finite-difference gradients give the torque rows' exact Jacobian",
+          "[between_nodes][friction]") {
+  // The cache's central differences also give the joint speeds' derivatives the split rows use.
+  const gaitopt::GaitFile g = turningStep();
+  const GaitEvaluator ev(g.robot, g.options, g.model_options);
+  const auto both = gaitopt::BetweenNodes::Both;
+  const Rows exact = rowsAt(ev, g.parameters, true, both);
+  const Rows fd = rowsAt(ev, g.parameters, true, both, gaitopt::GradientMode::FiniteDifference);
+  double worst = 0.0;
+  for (const int group : {gaitopt::kTorqueSS, gaitopt::kTorqueDS}) {
+    const gaitopt::ConstraintGroup& t = ev.layout()[group];
+    for (int r = 0; r < static_cast<int>(exact.entries.size()); ++r)
+      if (exact.entries[r] >= t.offset && exact.entries[r] < t.offset + t.count)
+        for (int i = 0; i < ev.numParameters(); ++i)
+          worst = std::max(worst, std::abs(fd.jacobian(r, i) - exact.jacobian(r, i)) /
+                                      std::max(1.0, std::abs(exact.jacobian(r, i))));
+  }
+  CHECK(worst < 1e-4);
 }
