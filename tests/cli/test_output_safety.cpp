@@ -386,13 +386,13 @@ TEST_CASE("output safety: a killed run leaves the old or the new result, never a
   const std::string synth = "synth --robot " + robot + " --gait " + gait;
   requireOldOrNew(synth + " --steps 3", synth + " --steps 30 --effect coulomb@knee_left=4",
                   {"0.05", "0.15", "0.3", "0.45", "0.6", "1"}, "walk.csv");
-  // optimize: 3 files, about 1.5 s of CPU at 0.6 m/s; sweep: sweep.csv and one folder of 3
-  // files per speed, about 2 s for two speeds.
+  // optimize: 3 files, 0.3 s to a few seconds of CPU at 0.6 m/s (the run's path depends on
+  // the code); sweep: sweep.csv and one folder of 3 files per speed, about 2 s for two speeds.
   const std::string config = quoted(sourcePath("configs/default.yaml"));
   requireOldOrNew("optimize --quiet --config " + config,
                   "optimize --quiet --speed 0.6 --config " + config,
                   light ? std::vector<std::string>{"1", "5"}
-                        : std::vector<std::string>{"0.3", "1", "2", "3"});
+                        : std::vector<std::string>{"0.05", "0.15", "0.3", "1", "2", "3"});
   const std::string sweep = "sweep --quiet --config " + config + " --speeds ";
   requireOldOrNew(sweep + "0.5:0.5:0.05", sweep + "0.5:0.55:0.05",
                   light ? std::vector<std::string>{"1", "5"}
