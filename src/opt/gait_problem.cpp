@@ -233,11 +233,12 @@ class BetweenNodeRows {
       speed[node] = c.sigma * jointSpeed(e, c, node);
     }
     const Eigen::VectorXd h = fine_ * g, w = fine_ * speed;
+    Eigen::VectorXd row(h.size());  // one tanh per point: a node ends two intervals
+    for (int i = 0; i < row.size(); ++i) row[i] = c.row(h[i], w[i]);
     std::vector<SampledMaximum> out(g.size() - 1);
     for (int k = 0; k + 1 < g.size(); ++k)
       for (int i = kBetweenNodesRefinement * k; i <= kBetweenNodesRefinement * (k + 1); ++i)
-        if (i == kBetweenNodesRefinement * k || c.row(h[i], w[i]) > out[k].value)
-          out[k] = {i, c.row(h[i], w[i]), w[i]};
+        if (i == kBetweenNodesRefinement * k || row[i] > out[k].value) out[k] = {i, row[i], w[i]};
     return out;
   }
   // The row's gradient beyond Σ_m P_m ∇g_m (in `out`, P the sample's interpolation row):
