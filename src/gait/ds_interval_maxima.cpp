@@ -161,7 +161,7 @@ Eigen::VectorXd DsIntervalMaxima::splitGradient(int q, const DsIntervalMaximum& 
     const auto domega = split ? g.dds_piece_speeds[m.piece].row(4 * k + c.joint)
                               : g.dds_joint_speeds.row(4 * k + c.joint);
     const double omega = speedAt(g.value, m.piece, k, c.joint);
-    out += l[k] * (dg - (c.slope(omega) - c.sigma * c.rowSlope(w)) * domega).transpose();
+    out += l[k] * (dg - c.sigma * (c.rowSlope(omega) - c.rowSlope(w)) * domega).transpose();
   }
   return out;
 }

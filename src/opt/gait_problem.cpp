@@ -2,12 +2,14 @@
 
 #include <cmath>
 #include <map>
+#include <memory>
 #include <optional>
 
 #include "gaitopt/gait/coulomb_split.hpp"
 #include "gaitopt/gait/ds_interval_maxima.hpp"
 #include "gaitopt/gait/feasibility.hpp"
 #include "gaitopt/math/chebyshev_maxima.hpp"
+#include "gaitopt/math/degree_cache.hpp"
 
 namespace gaitopt {
 namespace {
@@ -120,8 +122,10 @@ class BetweenNodeRows {
       if (r.group >= 0 && !piecewise(r.group) && !sequences_.count(key(r))) {
         sequences_[key(r)] = sequenceOf(r);
         const CoulombSplit split = coulombSplit(ev.model(), r.group, r.sub);
-        if (split.coulomb != 0.0 && fine_.size() == 0) fine_ = fineInterpolation(ev.ssGrid());
-        if (split.coulomb != 0.0) splits_[key(r)] = split;
+        if (split.coulomb != 0.0) {
+          splits_[key(r)] = split;
+          fine_ = sharedByDegree<MatrixX>(ev.ssGrid().degree(), fineInterpolation);
+        }
       }
       rows_.push_back(r);
     }
@@ -173,7 +177,7 @@ class BetweenNodeRows {
     if (split == splits_.end())
       lagrangeBasis(grid(ev_.layout()[r.group]), maximum(row).s, basis_);
     else
-      basis_ = fine_.row(sampled(row).sample).transpose();
+      basis_ = fine_->row(sampled(row).sample).transpose();
     const Sequence& q = sequences_.at(key(r));
     if (out.size() == kNumGaitParameters)
       sumColumns<Eigen::Matrix<double, kNumGaitParameters, 1>>(q, dg_t, out);
@@ -208,10 +212,10 @@ class BetweenNodeRows {
   const SampledMaximum& sampled(int row) const {
     return sampled_.at(key(rows_[row]))[rows_[row].interval];
   }
-  // Interpolation from the SS nodes onto the verdict's finer grid, whose node
-  // kBetweenNodesRefinement·k is node k.
-  static MatrixX fineInterpolation(const ChebyshevGrid& grid) {
-    const ChebyshevGrid fine(grid.degree() * kBetweenNodesRefinement);
+  // Interpolation from the nodes of a grid of degree n onto the verdict's finer grid, whose
+  // node kBetweenNodesRefinement·k is node k (math/degree_cache.hpp shares it per degree).
+  static MatrixX fineInterpolation(int n) {
+    const ChebyshevGrid grid(n), fine(n * kBetweenNodesRefinement);
     MatrixX p(fine.size(), grid.size());
     Eigen::VectorXd l;
     for (int i = 0; i < fine.size(); ++i) {
@@ -232,7 +236,7 @@ class BetweenNodeRows {
       g[node] -= c.term(jointSpeed(e, c, node));
       speed[node] = c.sigma * jointSpeed(e, c, node);
     }
-    const Eigen::VectorXd h = fine_ * g, w = fine_ * speed;
+    const Eigen::VectorXd h = *fine_ * g, w = *fine_ * speed;
     Eigen::VectorXd row(h.size());  // one tanh per point: a node ends two intervals
     for (int i = 0; i < row.size(); ++i) row[i] = c.row(h[i], w[i]);
     std::vector<SampledMaximum> out(g.size() - 1);
@@ -245,9 +249,10 @@ class BetweenNodeRows {
   // Σ_m c_m ∇ω_m with c_m = P_m (σ row'(w) − term'(ω_m)), the sample held fixed.
   void addCoulombGradient(const CoulombSplit& c, int row, const GaitGradient& gr,
                           Eigen::Ref<VectorX> out) {
-    const double top = c.sigma * c.rowSlope(sampled(row).w);
+    const double top = c.rowSlope(sampled(row).w);
     for (const auto& [node, k] : sequences_.at(key(rows_[row]))) {
-      const double coefficient = basis_[node] * (top - c.slope(jointSpeed(gr.value, c, node)));
+      const double coefficient =
+          basis_[node] * c.sigma * (top - c.rowSlope(jointSpeed(gr.value, c, node)));
       out += coefficient * gr.dss_joint_speeds.row(4 * node + c.joint).transpose();
     }
   }
@@ -268,7 +273,7 @@ class BetweenNodeRows {
   std::map<int, std::vector<InterpolantMaximum>> maxima_;
   std::map<int, CoulombSplit> splits_;  // by key, the rows with Coulomb friction
   std::map<int, std::vector<SampledMaximum>> sampled_;  // by key, theirs
-  MatrixX fine_;  // fineInterpolation, when a row is split
+  std::shared_ptr<const MatrixX> fine_;  // fineInterpolation, when a row is split
   std::map<int, Sequence> sequences_;  // by key, the smooth groups'
   std::optional<EvaluationKey> at_;  // of maxima_
   Eigen::VectorXd basis_;            // the Lagrange basis of the row at hand

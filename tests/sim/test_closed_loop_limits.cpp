@@ -178,10 +178,11 @@ TEST_CASE("Contact projection: a faster start walks with its DS normal force hel
         if (!s.single_support) least = std::min({least, s.R1(1), s.R2(1)});
       CHECK(least >= r_min - 1e-6);
       CHECK(least <= r_min + 1e-3);  // the bound was active
-      // The DS gives way on α where the force is held: after one step the cycle's α̇ is
-      // restored to 0.5 % of the perturbation.
+      // Held at 20 N the DS gives way on α: after one step the cycle's α̇ is restored to
+      // 0.5 % of the perturbation, at 0 N to 0.15 %.
+      const double share = r_min > 0.0 ? 0.005 : 0.0015;
       CHECK(held.steps[1].alphad_start ==
-            Approx(f.evaluation.motion.alphadot_iSS).margin(0.005 * std::abs(req.dalphad0)));
+            Approx(f.evaluation.motion.alphadot_iSS).margin(share * std::abs(req.dalphad0)));
     }
   }
 }

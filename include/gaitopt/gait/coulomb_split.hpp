@@ -31,13 +31,8 @@ struct CoulombSplit {
   double sigma = 1.0;    // +1: Γ*_j − Γmax, −1: −Γ*_j − Γmax
   int joint = 0;
 
-  // The friction term's share of a row at speed ω.
+  // The friction term's share of a row at speed ω (its derivative in ω: σ rowSlope(ω)).
   double term(double omega) const { return sigma * coulomb * std::tanh(omega / width); }
-  // Its derivative in ω.
-  double slope(double omega) const {
-    const double t = std::tanh(omega / width);
-    return sigma * coulomb * (1.0 - t * t) / width;
-  }
   // The row from h and w = σω at a point between the nodes.
   double row(double smooth, double w) const { return smooth + coulomb * std::tanh(w / width); }
   // Its first and second derivatives in w.
