@@ -10,6 +10,7 @@
 
 #include "gaitopt/opt/initial_guess.hpp"
 #include "gaitopt/io/csv_table.hpp"
+#include "gaitopt/io/optimize_config.hpp"
 #include "gaitopt/io/sweep_file.hpp"
 #include "test_files.hpp"
 #include "test_gait_support.hpp"
@@ -137,6 +138,39 @@ TEST_CASE("sweepSpeeds on the default robot: one chain", "[sweep]") {
   CHECK(r[1].from_speed == 0.4);
   CHECK(r[2].warm_started);
   CHECK(r[2].from_speed == 0.5);
+}
+
+// The 10-speed library on configs/default.yaml. 0.85 m/s: the walk's attempt from the 0.65 m/s
+// optimum (0.75 m/s has none yet; one restart) ends without an optimum; resumed from its last point with the
+// configured restarts, it ends optimal (its retries from the elastic problem's step and from
+// the default initial guess had ended `failed`). 1.05 m/s: the knee's joint limit certified.
+TEST_CASE("sweepSpeeds: a walk's attempt without an optimum resumes with the configured restarts",
+          "[sweep]") {
+  const gaitopt::OptimizeConfig config =
+      gaitopt::loadOptimizeConfig(gaitopt::test::sourcePath("configs/default.yaml"));
+  const gaitopt::GaitEvaluator ev(config.robot, config.options, config.model_options);
+  OptimizationRequest base =
+      gaitopt::optimizationRequest(config, gaitopt::configuredInitialGuess(config, ev.model()));
+  base.solver.print_every = 0;
+  const std::vector<SweepPoint> r =
+      gaitopt::sweepSpeeds(ev, base, parseSpeedRange("0.15:1.05:0.1"), SweepSettings{});
+  REQUIRE(r.size() == 10);
+  int optimal = 0;
+  for (const SweepPoint& p : r) optimal += gaitopt::isOptimal(p.result);
+  CHECK(optimal == 8);  // measured; 7 without the resumed attempt
+  const SweepPoint& v085 = r[7];
+  INFO("0.85 m/s: " << v085.result.status << ", " << v085.attempts << " attempts");
+  CHECK(v085.result.status == gaitopt::OptimizationStatus::Optimal);
+  CHECK(v085.attempts == 2);
+  CHECK(v085.warm_started);
+  CHECK(v085.from_speed == 0.65);
+  CHECK(v085.result.evaluation.C_Gamma == Approx(19661.75).epsilon(1e-3));
+  const SweepPoint& v105 = r[9];
+  CHECK(v105.result.status == gaitopt::OptimizationStatus::Infeasible);
+  REQUIRE(v105.certificate);
+  CHECK(v105.certificate->infeasible());
+  REQUIRE_FALSE(v105.certificate->blocking.empty());
+  CHECK_THAT(v105.certificate->blocking.front().name, Contains("joint_limits_ss knee 2 upper"));
 }
 
 TEST_CASE("sweepSpeeds: two threaded chains are deterministic and equal the two shards",
