@@ -421,12 +421,13 @@ GaitParameters solveFullProblem(GaitEvaluationCache& cache, GaitParameters p,
                  problem.addCost(makeCriterionCost(cache, req.criterion, scale));
                  if (req.speed) problem.addConstraints(makeSpeedConstraint(cache, *req.speed));
                });
-    // An NLopt run that broke down before it ever converged (on undefined trial points, or
-    // roundoff-limited far from a solution) restarts with Ipopt, which refuses undefined points
-    // natively (with the exchange method, measured faster for Ipopt). After a convergence, a
-    // breakdown restarts SLSQP from its last point: measured at 1.0 m/s on the default robot,
-    // Ipopt's exchange rounds then spent 2500 iterations (10 s) to the verdict SLSQP reaches in 93.
-    if (sol.status == NlpStatus::Failed && settings.backend != Backend::Ipopt && !converged) {
+    // An NLopt run that broke down (on undefined trial points, or roundoff-limited) restarts
+    // with Ipopt, which refuses undefined points natively (with the exchange method, measured
+    // faster for Ipopt). After a convergence, only if the settings ask for it: measured at
+    // 1.0 m/s on the default robot, Ipopt's exchange rounds then spent 2500 iterations (10 s)
+    // to the verdict SLSQP's restarts reach in 93.
+    if (sol.status == NlpStatus::Failed && settings.backend != Backend::Ipopt &&
+        (!converged || settings.ipopt_after_convergence)) {
       settings.backend = Backend::Ipopt;
       settings.constraint_exchange = true;
     }

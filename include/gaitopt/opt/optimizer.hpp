@@ -42,6 +42,11 @@ struct SolverSettings {
   // unmet between the nodes (from the start, SLSQP measured worse local optima: docs/commands/optimize.md).
   bool ds_between_nodes = false;
   int max_restarts = 3;  // of the full stage, from the last point, when it ends unmet
+  // An NLopt solve of the full stage that breaks down switches the run to Ipopt. After one of
+  // its solves converged, only with this on (measured: more random starts of Chessé 0.85 end
+  // optimal); off, SLSQP restarts from its last point (the sweep, whose speeds without an
+  // optimum get the elastic problem and retries: docs/commands/sweep.md).
+  bool ipopt_after_convergence = true;
   // When the full stage still ends with an unmet constraint: the nearest point meeting every
   // level and the speed, then the full stage again from there (docs/commands/optimize.md). Off
   // by default: it adds an Ipopt projection to every infeasible run (sweeps, infeasible
