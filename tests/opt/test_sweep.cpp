@@ -141,9 +141,10 @@ TEST_CASE("sweepSpeeds on the default robot: one chain", "[sweep]") {
 }
 
 // The 10-speed library on configs/default.yaml. 0.85 m/s: the walk's attempt from the 0.65 m/s
-// optimum (0.75 m/s has none yet; one restart) ends without an optimum; resumed from its last point with the
-// configured restarts, it ends optimal (its retries from the elastic problem's step and from
-// the default initial guess had ended `failed`). 1.05 m/s: the knee's joint limit certified.
+// optimum (0.75 m/s has none yet; one restart) ends without an optimum; resumed from its last
+// point with the configured restarts, it ends optimal (its retries from the elastic problem's
+// step and from the default initial guess had ended `failed`). 1.05 m/s: the knee's joint
+// limit certified.
 TEST_CASE("sweepSpeeds: a walk's attempt without an optimum resumes with the configured restarts",
           "[sweep]") {
   const gaitopt::OptimizeConfig config =
