@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <algorithm>
 #include <cstdlib>
+#include <mutex>
 #include <vector>
 
 #include "gaitopt/opt/hessian_modification.hpp"
@@ -270,9 +271,18 @@ class ProbeProblem : public Ipopt::TNLP {
                          Ipopt::IpoptCalculatedQuantities*) override {}
 };
 
+// One Ipopt solve at a time in the process: Ipopt's MUMPS interface keeps a static instance
+// count and sequential MUMPS is not known to be thread-safe, while a sweep's SLSQP chains run
+// on threads and may each call Ipopt (projections, the switch after a breakdown).
+std::mutex& oneSolveAtATime() {
+  static std::mutex m;
+  return m;
+}
+
 }  // namespace
 
 bool ipoptLinearSolverAvailable(const std::string& name) {
+  const std::lock_guard<std::mutex> lock(oneSolveAtATime());
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
   app->Jnlst()->DeleteAllJournals();  // the probe must stay silent, whatever Ipopt reports
   app->Options()->SetIntegerValue("print_level", 0);
@@ -291,6 +301,7 @@ std::string rejectedIpoptOption(const std::vector<std::pair<std::string, std::st
 }
 
 NlpSolution solveWithIpopt(NlpProblem& problem, const NlpSettings& settings) {
+  const std::lock_guard<std::mutex> lock(oneSolveAtATime());
   Ipopt::SmartPtr<TnlpAdapter> nlp = new TnlpAdapter(problem, settings);
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
   Ipopt::OptionsList& o = *app->Options();

@@ -1,11 +1,16 @@
 // Ipopt warm start (warm_start_init_point with the previous solve's multipliers, as the
 // optimiser does between exchange rounds and restarts): the same optimum as a cold solve, in
 // fewer iterations than a restart from the same point without multipliers, for each Hessian
-// mode of the adapter.
+// mode of the adapter. Solves from concurrent threads run one at a time.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <memory>
+#include <thread>
+#include <vector>
 
 #include "gaitopt/opt/nlp_solver.hpp"
 
@@ -48,13 +53,37 @@ class DiscAndPlane : public gaitopt::ConstraintSet {
   }
 };
 
-gaitopt::NlpProblem makeProblem(const VectorX& start) {
+// The shifted quadratic, counting how many evaluations run at once (each lasts 200 µs).
+class ConcurrencyProbe : public ShiftedQuadratic {
+ public:
+  ConcurrencyProbe(std::atomic<int>& inside, std::atomic<int>& most)
+      : inside_(inside), most_(most) {}
+  bool value(const VectorX& x, double& f) override {
+    const int now = ++inside_;
+    int seen = most_.load();
+    while (now > seen && !most_.compare_exchange_weak(seen, now)) {
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+    --inside_;
+    return ShiftedQuadratic::value(x, f);
+  }
+
+ private:
+  std::atomic<int>& inside_;
+  std::atomic<int>& most_;
+};
+
+gaitopt::VariableSet boxFrom(const VectorX& start) {
   gaitopt::VariableSet v;
   v.names = {"a", "b", "c"};
   v.lower = VectorX::Constant(3, -5.0);
   v.upper = VectorX::Constant(3, 5.0);
   v.initial = start;
-  gaitopt::NlpProblem p(v);
+  return v;
+}
+
+gaitopt::NlpProblem makeProblem(const VectorX& start) {
+  gaitopt::NlpProblem p(boxFrom(start));
   p.addCost(std::make_unique<ShiftedQuadratic>());
   p.addConstraints(std::make_unique<DiscAndPlane>());
   return p;
@@ -95,4 +124,32 @@ TEST_CASE("ipopt: a warm start reaches the cold optimum, faster than a primal-on
   CHECK((warm.x - cold.x).norm() <= 1e-6 * cold.x.norm());
   // The multipliers save iterations over restarting from the same point without them.
   CHECK(warm.iterations < primal.iterations);
+}
+
+TEST_CASE("ipopt: solves from concurrent threads run one at a time, each at the lone optimum",
+          "[ipopt]") {
+  gaitopt::NlpSettings settings;
+  settings.print_every = 0;
+  gaitopt::NlpProblem lone_problem = makeProblem(VectorX::Zero(3));
+  const gaitopt::NlpSolution lone = gaitopt::solveWithIpopt(lone_problem, settings);
+  REQUIRE(lone.status == gaitopt::NlpStatus::Solved);
+
+  std::atomic<int> inside{0}, most{0};
+  constexpr int kThreads = 4;
+  std::vector<gaitopt::NlpSolution> solutions(kThreads);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t)
+    threads.emplace_back([&, t] {
+      gaitopt::NlpProblem p(boxFrom(VectorX::Zero(3)));
+      p.addCost(std::make_unique<ConcurrencyProbe>(inside, most));
+      p.addConstraints(std::make_unique<DiscAndPlane>());
+      solutions[t] = gaitopt::solveWithIpopt(p, settings);
+    });
+  for (std::thread& t : threads) t.join();
+  CHECK(most.load() == 1);
+  for (const gaitopt::NlpSolution& s : solutions) {
+    CHECK(s.status == gaitopt::NlpStatus::Solved);
+    CHECK(s.iterations == lone.iterations);
+    CHECK((s.x - lone.x).norm() == 0.0);
+  }
 }

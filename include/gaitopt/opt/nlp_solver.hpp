@@ -59,6 +59,7 @@ struct NlpSolution {
   std::string message;
 };
 
+// Thread-safe: concurrent calls run one after the other.
 NlpSolution solveWithIpopt(NlpProblem& problem, const NlpSettings& settings);
 // The first option key Ipopt rejects (unknown key or bad value), or "" if all are accepted.
 std::string rejectedIpoptOption(const std::vector<std::pair<std::string, std::string>>& options);
