@@ -271,9 +271,10 @@ class ProbeProblem : public Ipopt::TNLP {
                          Ipopt::IpoptCalculatedQuantities*) override {}
 };
 
-// One Ipopt solve at a time in the process: Ipopt's MUMPS interface keeps a static instance
-// count and sequential MUMPS is not known to be thread-safe, while a sweep's SLSQP chains run
-// on threads and may each call Ipopt (projections, the switch after a breakdown).
+// One Ipopt solve at a time in the process: Ipopt with the sequential MUMPS crashes when two
+// solves run at once (measured: four threads, tests/opt/test_ipopt_warm_start.cpp), while a
+// sweep's SLSQP chains run on threads and may each call Ipopt (projections, the switch after a
+// breakdown).
 std::mutex& oneSolveAtATime() {
   static std::mutex m;
   return m;
