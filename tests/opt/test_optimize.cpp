@@ -490,12 +490,14 @@ TEST_CASE("optimize: a breakdown after SLSQP converged switches to Ipopt only if
   request.solver.max_iter = 50;
   const auto exchangeRounds = [](const OptimizationResult& r) {
     int rounds = 0, failed = 0;
+    std::string stages;
     for (const gaitopt::StageReport& s : r.stages) {
-      INFO(s.name << ": " << s.iterations << " iterations");
+      stages += s.name + ": " + std::to_string(s.iterations) + " iterations; ";
       const bool closing = s.name.rfind("active-set Newton", 0) == 0;
       rounds += !closing && s.name.find("(1161 grid entries)") == std::string::npos;
       failed += !closing && s.status == gaitopt::NlpStatus::Failed;
     }
+    INFO(stages);
     CHECK(failed >= 1);  // the breakdown happened
     return rounds;
   };
