@@ -94,6 +94,10 @@ void registerStabilityCommand(CLI::App& app, int& exit_code) {
         studyStability(e, gait.robot, gait.options, gait.model_options, req);
     writeStabilityReport(dir, s, req, a->gait);
     output.commit();
+    if (!s.jacobian_fallback.empty())
+      std::cerr << "gaitopt: stability: note: Jacobian by central differences; the variational "
+                   "equations stopped ("
+                << s.jacobian_fallback << ")\n";
     std::cout << "stability: dominant |eigenvalue| " << shortNumber(s.dominant_modulus)
               << ", power iteration " << shortNumber(s.power_estimate) << ", fixed-point residual "
               << shortNumber(s.linearisation.fixed_point_residual)

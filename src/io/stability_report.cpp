@@ -96,7 +96,8 @@ std::string stabilityJson(const StabilityStudy& s, const StabilityRequest& reque
   w.key("section").value("single-support start (after lift-off), x = (q, qd)");
   w.key("fixed_point").value(s.fixed_point);
   w.key("fixed_point_residual").value(L.fixed_point_residual);
-  w.key("jacobian_method").value(toString(request.jacobian));
+  w.key("jacobian_method").value(toString(s.jacobian_method));
+  if (!s.jacobian_fallback.empty()) w.key("jacobian_fallback").value(s.jacobian_fallback);
   w.key("fd_step").value(request.fd_step);
   w.key("bandwidth").value(request.bandwidth);
   w.key("ds_control").value(toString(request.ds_control));

@@ -56,6 +56,8 @@ const char* outcomeName(WalkOutcome o) {
       return "slipped";
     case WalkOutcome::RearFootLift:
       return "rear_foot_lift";
+    case WalkOutcome::IntegrationFailed:
+      return "integration_failed";
   }
   return "unknown";
 }
@@ -131,8 +133,9 @@ void closedLoopEvents(const ClosedLoop& s, bool ss, const DsReference& ds, doubl
   const double mu = s.options.plant_friction_coefficient;
   const double slack = kContactTolerance * p.total_mass * p.gravity;
   // Slip: a cone row of the plant's μ above the slack (the rows negated: g > 0 while it holds).
-  const std::array<double, 2> cone1 = frictionConeRows(e.R1, mu);
-  const std::array<double, 2> cone2 = frictionConeRows(e.R2, mu);
+  const std::array<double, 2> no_slip{-1.0, -1.0};
+  const std::array<double, 2> cone1 = s.options.detect_slip ? frictionConeRows(e.R1, mu) : no_slip;
+  const std::array<double, 2> cone2 = s.options.detect_slip ? frictionConeRows(e.R2, mu) : no_slip;
   g.resize(kClosedLoopEvents);
   if (ss) {
     const ChainState<double> st = chainState(p, q, qd);

@@ -20,6 +20,7 @@ struct CvodeIntegrator::Impl {
   SUNNonlinearSolver nls = nullptr;
   void* mem = nullptr;
   Eigen::VectorXd y_buf, f_buf, g_buf;
+  std::string last_error;  // CVODE's message of the last failure (instead of its stderr line)
 
   static int f(realtype t, N_Vector y, N_Vector ydot, void* data) {
     Impl& s = *static_cast<Impl*>(data);
@@ -34,6 +35,9 @@ struct CvodeIntegrator::Impl {
     s.roots(t, s.y_buf, s.g_buf);
     Eigen::Map<Eigen::VectorXd>(gout, s.n_roots) = s.g_buf;
     return 0;
+  }
+  static void error(int, const char*, const char*, char* message, void* data) {
+    static_cast<Impl*>(data)->last_error = message;
   }
 };
 
@@ -61,6 +65,7 @@ CvodeIntegrator::CvodeIntegrator(int n, const Rhs& rhs, int n_roots, const Roots
   if (!s.mem) throw std::runtime_error("CVODE: CVodeCreate failed");
   check(CVodeInit(s.mem, Impl::f, 0.0, s.y), "CVodeInit");
   check(CVodeSetUserData(s.mem, &s), "CVodeSetUserData");
+  check(CVodeSetErrHandlerFn(s.mem, Impl::error, &s), "CVodeSetErrHandlerFn");
   if (tol.absolute_per_component.size() == n) {
     N_Vector atol = N_VNew_Serial(n, s.ctx);
     Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(atol), n) = tol.absolute_per_component;
@@ -96,7 +101,10 @@ CvodeIntegrator::Result CvodeIntegrator::advance(double t_end) {
   Impl& s = *impl_;
   realtype t = 0.0;
   const int flag = CVode(s.mem, t_end, s.y, &t, CV_NORMAL);
-  check(flag, "CVode");
+  if (flag < 0)
+    throw IntegrationError(t, "CVODE stopped at t = " + std::to_string(t) + " s: " +
+                                  (s.last_error.empty() ? "flag " + std::to_string(flag)
+                                                        : s.last_error));
   Result r{t, Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(s.y), s.n), -1};
   if (flag == CV_ROOT_RETURN) {
     std::vector<int> found(s.n_roots);

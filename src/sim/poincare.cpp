@@ -42,6 +42,17 @@ PoincareLinearisation linearisePoincare(const StepMap& P, const Eigen::VectorXd&
   return r;
 }
 
+PoincareLinearisation linearisePoincareOrDifferences(
+    const std::function<PoincareLinearisation()>& sensitivity, const StepMap& P,
+    const Eigen::VectorXd& x, const Eigen::VectorXd& h, std::string& fallback) {
+  try {
+    return sensitivity();
+  } catch (const IntegrationError& error) {
+    fallback = error.what();
+    return linearisePoincare(P, x, h);
+  }
+}
+
 double powerIteration(const StepMap& P, const Eigen::VectorXd& x, const Eigen::VectorXd& dx_max,
                       int iterations, Eigen::VectorXd& vector) {
   const Eigen::VectorXd Px = P(x);

@@ -24,6 +24,7 @@ enum class WalkOutcome {
   Fell,               // α stopped progressing (fell back) or the hip went below 0.3 m
   Slipped,            // a supporting foot left its friction cone (|Rx| > μ Rz), or slid at impact
   RearFootLift,       // the impact lifted the rear foot of a gait that needs a double support
+  IntegrationFailed,  // CVODE could not integrate the closed loop (its message says why)
 };
 const char* outcomeName(WalkOutcome o);
 
@@ -31,6 +32,7 @@ const char* outcomeName(WalkOutcome o);
 // plant's.
 struct ClosedLoopOptions : ControllerOptions {
   double plant_friction_coefficient = 0.8;  // plant ground: slip when |Rx| > μ Rz
+  bool detect_slip = true;                  // false: no slip event (the feet stick)
   bool touchdown_by_foot_height = false;    // touchdown when foot 2 reaches z = 0 (else α = α_fSS)
 };
 

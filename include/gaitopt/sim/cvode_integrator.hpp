@@ -7,8 +7,21 @@
 #include <Eigen/Core>
 #include <functional>
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 namespace gaitopt {
+
+// CVODE could not continue an integration (e.g. its step limit between two outputs, or an
+// error test failing at the minimum step): the time reached and CVODE's own message.
+class IntegrationError : public std::runtime_error {
+ public:
+  IntegrationError(double t, const std::string& message) : std::runtime_error(message), t_(t) {}
+  double time() const { return t_; }
+
+ private:
+  double t_;
+};
 
 struct CvodeTolerances {
   double relative = 1e-10;

@@ -20,6 +20,7 @@ struct WalkRequest {
   double sample_rate = 200.0;                // trajectory rows [Hz] (events are always recorded)
   double friction_coefficient = 0.8;         // of the controller's cones (gait option)
   double plant_friction_coefficient = -1.0;  // plant ground μ for slip; < 0: friction_coefficient
+  bool detect_slip = true;                   // false: the feet stick whatever the cone (analysis)
   double min_normal_force = 0.0;             // R_min [N] of the projection (gait option)
   double ground_slope = 0.0;                 // plant ground [rad], + uphill (ClosedLoopOptions)
   bool torque_limits = true;                 // project the inputs on the limits (4.57), (4.60)

@@ -5,6 +5,7 @@
 // state at the next single-support start (after DS and lift-off) in closed loop.
 #include <Eigen/Core>
 #include <functional>
+#include <string>
 
 #include "gaitopt/sim/hybrid_walk.hpp"
 
@@ -28,6 +29,13 @@ PoincareLinearisation analyseJacobian(const Eigen::MatrixXd& J);
 
 PoincareLinearisation linearisePoincare(const StepMap& P, const Eigen::VectorXd& x,
                                         const Eigen::VectorXd& h);
+
+// `sensitivity()` (the variational equations), or central differences of P at x with steps h
+// when CVODE cannot integrate those (IntegrationError, whose message goes to `fallback`; it is
+// left unchanged otherwise).
+PoincareLinearisation linearisePoincareOrDifferences(
+    const std::function<PoincareLinearisation()>& sensitivity, const StepMap& P,
+    const Eigen::VectorXd& x, const Eigen::VectorXd& h, std::string& fallback);
 
 // (4.61): Δx_{k+1} = g(Δx_k)/c_{k+1}, g(Δx) = P(x + Δx) − P(x), c the signed largest
 // component of g relative to the box Δx_max; returns c after `iterations`, `vector` Δx.

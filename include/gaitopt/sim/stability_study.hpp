@@ -45,6 +45,10 @@ struct StabilityMargins {
 struct StabilityStudy {
   Eigen::VectorXd fixed_point;  // x = (q, q̇) at SS start on the cycle
   PoincareLinearisation linearisation;
+  // The method that gave it: the requested one, or central differences when the variational
+  // equations could not be integrated (why in jacobian_fallback).
+  PoincareJacobianMethod jacobian_method = PoincareJacobianMethod::Sensitivity;
+  std::string jacobian_fallback;
   double power_estimate = 0.0;
   Eigen::VectorXd power_vector;
   double dominant_modulus = 0.0;  // |λ₀|
@@ -62,7 +66,7 @@ struct StabilityStudy {
 };
 
 // `evaluation` is the gait's, with its motion computed; throws std::runtime_error when the
-// cycle cannot be walked.
+// cycle cannot be walked (the perturbed steps of the maps and margins report how they end).
 StabilityStudy studyStability(const GaitEvaluation<double>& evaluation, const RobotParams& robot,
                               const GaitOptions& options, const ModelOptions& model_options,
                               const StabilityRequest& request);
