@@ -214,9 +214,10 @@ WalkResult Walker::run() {
   return out_;
 }
 
-// One step's phases. A step CVODE cannot integrate (measured: a perturbed C&A step whose
-// closed loop stiffens near a stretched leg takes 10⁵ steps before the next output) ends the
-// walk like any other failure, so that a margin search or a map counts it as not walked.
+// One step's phases. A step CVODE cannot integrate (measured: a perturbed step of
+// configs/gait/chevallereau_aoustin_0.75.yaml in the margin search, 10⁵ CVODE steps before the
+// next output) ends the walk like any other failure, so that a margin search or a map counts it
+// as not walked.
 bool Walker::walkStep(double& t, Eigen::VectorXd& y, int k) {
   try {
     if (!singleSupport(t, y, k)) return false;

@@ -96,9 +96,9 @@ StabilityStudy studyStability(const GaitEvaluation<double>& e, const RobotParams
   s.fixed_point = walkingCycleState(e.motion);
   const Eigen::VectorXd h = Eigen::VectorXd::Constant(10, request.fd_step);
   starting("Poincare linearisation");
-  // The variational equations of the {ss_points: 11} C&A impact gait, whose rear leg is
-  // stretched at touchdown, take 10⁵ CVODE steps before it (measured); the map itself
-  // integrates, so its central differences give the Jacobian there.
+  // The variational equations of the {ss_points: 11} C&A impact gait take 10⁵ CVODE steps
+  // before its touchdown (measured); the map itself integrates, so its central differences give
+  // the Jacobian there.
   s.linearisation =
       request.jacobian == PoincareJacobianMethod::FiniteDifference
           ? linearisePoincare(P, s.fixed_point, h)
